@@ -1,0 +1,42 @@
+#pragma once
+#include <memory>
+#include <optional>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "ladarsim/raytrace/hit.h"
+#include "ladarsim/scene/scene.h"
+
+namespace ladarsim::raytrace {
+
+/// A scene.Scene inside Embree. Each object's mesh becomes one BVH, built once; each object is an
+/// instance of it, with Embree motion-blur time steps when its trajectory moves, so that a ray
+/// carries its own emission time. The background map is a set of oriented discs in the top scene.
+///
+/// Coordinates: everything handed to Embree is single precision relative to `origin_world`
+/// (choose the sensor position): large geo-referenced coordinates never reach float.
+class TracedScene {
+public:
+    TracedScene(const scene::Scene& scene, const Eigen::Vector3d& origin_world);
+    ~TracedScene();
+    TracedScene(const TracedScene&) = delete;
+    TracedScene& operator=(const TracedScene&) = delete;
+
+    /// Places every moving instance for rays emitted in [begin_s, end_s] (a frame), sampling each
+    /// trajectory at `motion_steps` >= 2 evenly spaced times (Embree interpolates linearly between).
+    /// Must be called before tracing, and again for each new time window.
+    void set_time_window(double begin_s, double end_s, int motion_steps);
+
+    std::optional<Hit> trace(const Ray& ray) const;
+    /// Traces many rays at once (Embree streams); results[i] belongs to rays[i].
+    void trace(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const;
+
+    const Eigen::Vector3d& origin_world() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ladarsim::raytrace

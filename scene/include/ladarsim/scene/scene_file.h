@@ -1,0 +1,15 @@
+#pragma once
+#include <filesystem>
+
+#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/scene/scene.h"
+
+namespace ladarsim::scene {
+
+/// Reads the scene part of a scenario file: the "objects" array and the optional "background"
+/// object, from the scenario's top-level fields (which marks those keys as used; the caller reads
+/// the rest and rejects unknown keys). Relative paths are resolved against `scenario_dir`.
+/// Throws InputError naming the file, the field and the problem.
+Scene read_scene(JsonFields& scenario, const std::filesystem::path& scenario_dir);
+
+}  // namespace ladarsim::scene
