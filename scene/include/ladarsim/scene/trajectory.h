@@ -15,6 +15,10 @@ struct Pose {
     Eigen::Isometry3d world_from_object() const;
 };
 
+/// Orientation from aircraft angles in degrees: yaw about +z (positive turns +x towards +y),
+/// pitch positive nose up, roll about +x; applied as yaw, then pitch, then roll (intrinsic).
+Eigen::Quaterniond orientation_from_ypr_deg(double yaw_deg, double pitch_deg, double roll_deg);
+
 struct Keyframe {
     double time_s = 0.0;
     Pose pose;
