@@ -1,0 +1,69 @@
+#pragma once
+// The sensor as data: scan geometry, timing, footprint and gimbal. Radiometric parameters
+// (power, aperture, detector) arrive with the sensor-physics issue.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "ladarsim/scene/json_fields.h"
+
+namespace ladarsim::sensor_model {
+
+enum class GalvoSweep {
+    sawtooth,  ///< every line sweeps in +azimuth order, one line per galvo period (fly-back not modelled)
+    triangle,  ///< two lines per galvo period, alternating direction
+};
+
+std::string to_string(GalvoSweep sweep);
+
+struct SensorConfig {
+    std::string preset = "paper_ladar";
+    double wavelength_nm = 1560.0;
+    double field_az_deg = 0.5;       ///< full field of the raster in azimuth
+    double field_el_deg = 0.5;
+    int beams_az = 150;              ///< beams per line
+    int beams_el = 20;               ///< lines per frame
+    double divergence_mrad = 0.62;   ///< full angle at the 1/e^2 irradiance radius
+    double galvo_rate_hz = 1000.0;
+    GalvoSweep sweep = GalvoSweep::sawtooth;
+    double frame_rate_hz = 20.0;
+    double pulse_rate_hz = 1.0e6;    ///< laser repetition rate (several pulses per beam position)
+    double max_range_m = 3000.0;     ///< returns beyond are not reported
+
+    double gimbal_az_limit_deg = 175.0;  ///< +- about the mount's x axis: 350 deg in all
+    double gimbal_el_min_deg = -30.0;    ///< 120 deg in all
+    double gimbal_el_max_deg = 90.0;
+    double gimbal_slew_rate_dps = 16.0;
+
+    int footprint_samples = 16;          ///< sub-rays per beam
+    double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
+    double return_gap_m = 0.15;          ///< surfaces closer than this along a beam merge (c * 1 ns / 2)
+
+    /// Throws InputError(file, "sensor.<field>", ...) for values no sensor can have.
+    void validate(const std::string& file) const;
+
+    /// Derived quantities people check the paper's numbers with.
+    double line_duration_s() const;
+    double frame_scan_duration_s() const;  ///< time the galvo needs for all lines of a frame
+    double beam_dwell_s() const;           ///< time per beam position
+    double pulses_per_beam() const;
+    double unambiguous_range_m() const;    ///< c / (2 * pulse rate)
+    double beam_pitch_az_mrad() const;
+    double beam_pitch_el_mrad() const;
+    double beams_per_second() const;       ///< beams per frame * frame rate
+};
+
+/// Names of the built-in presets.
+std::vector<std::string> sensor_presets();
+/// A preset by name; throws std::invalid_argument for an unknown one.
+SensorConfig sensor_preset(const std::string& name);
+
+/// Reads the sensor parameters of a scenario's "sensor" object: "preset" first, then any
+/// parameter overriding it. Keys it does not know are left unused (the caller owns the object).
+SensorConfig read_sensor_config(JsonFields& sensor);
+
+/// Every parameter and the derived quantities, for the manifest and `ladarsim sensor show`.
+nlohmann::json to_json(const SensorConfig& config);
+
+}  // namespace ladarsim::sensor_model

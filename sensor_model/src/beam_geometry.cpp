@@ -1,0 +1,22 @@
+#include "ladarsim/sensor_model/beam_geometry.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace ladarsim::sensor_model {
+
+Eigen::Matrix3d sensor_from_beam(GimbalPointing pointing, double az_offset_rad, double el_offset_rad) {
+    using Eigen::AngleAxisd;
+    using Eigen::Vector3d;
+    return (AngleAxisd(pointing.az_rad, Vector3d::UnitZ()) * AngleAxisd(-pointing.el_rad, Vector3d::UnitY()) *
+            AngleAxisd(az_offset_rad, Vector3d::UnitZ()) * AngleAxisd(-el_offset_rad, Vector3d::UnitY()))
+        .toRotationMatrix();
+}
+
+GimbalPointing pointing_towards(const Eigen::Vector3d& d) {
+    if (d.isZero()) return {};
+    return {std::atan2(d.y(), d.x()), std::atan2(d.z(), std::hypot(d.x(), d.y()))};
+}
+
+}  // namespace ladarsim::sensor_model

@@ -1,0 +1,226 @@
+#include "ladarsim/sensor_model/frame_renderer.h"
+
+#include <algorithm>
+#include <numbers>
+
+#include <tbb/parallel_for.h>
+
+#include "ladarsim/sensor_model/beam_geometry.h"
+#include "ladarsim/sensor_model/counter_random.h"
+
+namespace ladarsim::sensor_model {
+
+namespace {
+
+constexpr double kMradToRad = 1e-3;
+
+GimbalPointing initial_pointing(const SensorMount& mount, GimbalPointing cue, bool has_cue) {
+    constexpr double kRad = std::numbers::pi / 180.0;
+    GimbalPointing p = has_cue ? cue : GimbalPointing{};
+    if (mount.gimbal_az_deg) p.az_rad = *mount.gimbal_az_deg * kRad;
+    if (mount.gimbal_el_deg) p.el_rad = *mount.gimbal_el_deg * kRad;
+    return p;
+}
+
+struct SubRayHit {
+    double range_m;
+    double weight;
+    double signal;  ///< weight * reflectance * cos(incidence)
+    std::uint32_t object_id;
+};
+
+}  // namespace
+
+Eigen::Vector3d object_centre_world(const scene::SceneObject& object, double time_s) {
+    const Eigen::Vector3d centre_model = object.scale * object.model->bounds().center().cast<double>();
+    return object.trajectory.at(time_s).world_from_object() * centre_model;
+}
+
+FrameRenderer::FrameRenderer(const Scenario& scenario)
+    : scenario_(scenario),
+      traced_(scenario.scene, scenario.mount.position_world),
+      raster_(scenario.sensor),
+      footprint_(scenario.sensor.divergence_mrad * kMradToRad, scenario.sensor.footprint_samples,
+                 scenario.sensor.footprint_truncation) {}
+
+double FrameRenderer::frame_start_s(std::uint64_t index) const {
+    return scenario_.render.start_time_s + static_cast<double>(index) / scenario_.sensor.frame_rate_hz;
+}
+
+GimbalPointing FrameRenderer::cue_pointing(double time_s) const {
+    for (const auto& object : scenario_.scene.objects) {
+        if (object.id != scenario_.mount.cue_object_id) continue;
+        const Eigen::Vector3d in_sensor =
+            scenario_.mount.world_from_sensor().inverse() * object_centre_world(object, time_s);
+        return pointing_towards(in_sensor);
+    }
+    return {};
+}
+
+GimbalPointing FrameRenderer::gimbal_pointing(std::uint64_t index) {
+    const bool cued = scenario_.mount.cue_object_id != 0;
+    if (pointing_by_frame_.empty()) {
+        Gimbal g(scenario_.sensor, initial_pointing(scenario_.mount, cue_pointing(frame_start_s(0)), cued));
+        pointing_by_frame_.push_back(g.pointing());
+    }
+    // The gimbal moves between frames, so frame k's pointing depends on every earlier frame:
+    // replay from the last known frame (cheap: two angles per frame).
+    while (pointing_by_frame_.size() <= index) {
+        const std::uint64_t next = pointing_by_frame_.size();
+        Gimbal g(scenario_.sensor, pointing_by_frame_.back());
+        if (cued) g.slew_towards(cue_pointing(frame_start_s(next)), 1.0 / scenario_.sensor.frame_rate_hz);
+        pointing_by_frame_.push_back(g.pointing());
+    }
+    return pointing_by_frame_[index];
+}
+
+std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, double frame_start_s,
+                                             std::uint64_t frame) const {
+    const auto& sensor = scenario_.sensor;
+    const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor();
+    const int samples = footprint_.samples();
+    std::vector<SubRay> sub_rays(static_cast<std::size_t>(samples));
+    std::vector<double> uniforms(2 * static_cast<std::size_t>(samples));
+    std::vector<raytrace::Ray> rays(static_cast<std::size_t>(samples));
+    std::vector<std::optional<raytrace::Hit>> hits(static_cast<std::size_t>(samples));
+    std::vector<SubRayHit> surface_hits;
+    surface_hits.reserve(static_cast<std::size_t>(samples));
+    std::vector<Return> returns;
+
+    for (int step = 0; step < raster_.columns(); ++step) {
+        const int firing_index = row * raster_.columns() + step;
+        const RasterBeam beam = raster_.beam(firing_index);
+        const Eigen::Matrix3d sensor_from_beam_m = sensor_from_beam(pointing, beam.az_offset_rad, beam.el_offset_rad);
+        const Eigen::Matrix3d world_from_beam = world_from_sensor.linear() * sensor_from_beam_m;
+        const double time_s = frame_start_s + beam.time_offset_s;
+
+        if (scenario_.render.jitter) {
+            for (int i = 0; i < samples; ++i) {
+                const auto u = uniform4(scenario_.render.seed, RandomStream::footprint_jitter, frame,
+                                        static_cast<std::uint32_t>(firing_index), static_cast<std::uint32_t>(i));
+                uniforms[2 * i] = u[0];
+                uniforms[2 * i + 1] = u[1];
+            }
+            footprint_.jittered(sub_rays, uniforms);
+        } else {
+            footprint_.fixed(sub_rays);
+        }
+        for (int i = 0; i < samples; ++i) {
+            const Eigen::Vector3d in_beam(1.0, std::tan(sub_rays[i].offset_x_rad), std::tan(sub_rays[i].offset_y_rad));
+            rays[i].origin_world = scenario_.mount.position_world;
+            rays[i].direction = (world_from_beam * in_beam).normalized();
+            rays[i].time_s = time_s;
+            rays[i].max_range_m = sensor.max_range_m;
+        }
+        traced_.trace(rays, hits);
+
+        surface_hits.clear();
+        for (int i = 0; i < samples; ++i) {
+            if (!hits[i]) continue;
+            const auto& h = *hits[i];
+            surface_hits.push_back({h.range_m, sub_rays[i].weight,
+                                    sub_rays[i].weight * h.reflectance * h.cos_incidence, h.object_id});
+        }
+        std::sort(surface_hits.begin(), surface_hits.end(),
+                  [](const SubRayHit& a, const SubRayHit& b) { return a.range_m < b.range_m; });
+
+        const Eigen::Vector3d axis_sensor = sensor_from_beam_m.col(0);
+        const GimbalPointing beam_angles = pointing_towards(axis_sensor);
+        std::uint8_t return_index = 0;
+        for (std::size_t first = 0; first < surface_hits.size();) {
+            std::size_t last = first + 1;
+            while (last < surface_hits.size() &&
+                   surface_hits[last].range_m - surface_hits[last - 1].range_m <= sensor.return_gap_m) {
+                ++last;
+            }
+            double weight = 0.0, weighted_range = 0.0, signal = 0.0;
+            for (std::size_t k = first; k < last; ++k) {
+                weight += surface_hits[k].weight;
+                weighted_range += surface_hits[k].weight * surface_hits[k].range_m;
+                signal += surface_hits[k].signal;
+            }
+            // The object carrying most of this surface's energy names the return.
+            std::uint32_t object_id = surface_hits[first].object_id;
+            double best = 0.0;
+            for (std::size_t k = first; k < last; ++k) {
+                double on_object = 0.0;
+                for (std::size_t m = first; m < last; ++m) {
+                    if (surface_hits[m].object_id == surface_hits[k].object_id) on_object += surface_hits[m].weight;
+                }
+                if (on_object > best) {
+                    best = on_object;
+                    object_id = surface_hits[k].object_id;
+                }
+            }
+            Return r;
+            r.range_m = weighted_range / weight;
+            r.position_sensor = (axis_sensor * r.range_m).cast<float>();
+            r.intensity = static_cast<float>(signal);
+            r.time_s = time_s;
+            r.beam_az_rad = static_cast<float>(beam_angles.az_rad);
+            r.beam_el_rad = static_cast<float>(beam_angles.el_rad);
+            r.column = static_cast<std::uint16_t>(beam.column);
+            r.row = static_cast<std::uint16_t>(beam.row);
+            r.return_index = return_index++;
+            r.object_id = object_id;
+            returns.push_back(r);
+            first = last;
+        }
+    }
+    // A triangle sweep fires odd lines right to left; frames list returns by column.
+    std::stable_sort(returns.begin(), returns.end(),
+                     [](const Return& a, const Return& b) { return a.column < b.column; });
+    return returns;
+}
+
+std::vector<GroundTruthObject> FrameRenderer::ground_truth(double time_s, const std::vector<Return>& returns) const {
+    const Eigen::Isometry3d sensor_from_world = scenario_.mount.world_from_sensor().inverse();
+    const Eigen::Quaterniond sensor_from_world_rotation(sensor_from_world.linear());
+    std::vector<GroundTruthObject> truth;
+    for (const auto& object : scenario_.scene.objects) {
+        const scene::Pose pose = object.trajectory.at(time_s);
+        GroundTruthObject g;
+        g.object_id = object.id;
+        g.object_class = std::string(scene::to_string(object.object_class));
+        g.name = object.name;
+        g.time_s = time_s;
+        g.box_world.centre = object_centre_world(object, time_s);
+        g.box_world.size = object.scale * object.model->bounds().sizes().cast<double>();
+        g.box_world.orientation = pose.orientation.normalized();
+        g.box_sensor.centre = sensor_from_world * g.box_world.centre;
+        g.box_sensor.size = g.box_world.size;
+        g.box_sensor.orientation = (sensor_from_world_rotation * g.box_world.orientation).normalized();
+        g.returns = static_cast<std::uint32_t>(std::count_if(
+            returns.begin(), returns.end(), [&](const Return& r) { return r.object_id == object.id; }));
+        truth.push_back(std::move(g));
+    }
+    return truth;
+}
+
+Frame FrameRenderer::render(std::uint64_t index) {
+    Frame frame;
+    frame.index = index;
+    frame.start_time_s = frame_start_s(index);
+    frame.end_time_s = frame.start_time_s + scenario_.sensor.frame_scan_duration_s();
+    frame.columns = raster_.columns();
+    frame.rows = raster_.rows();
+    const GimbalPointing pointing = gimbal_pointing(index);
+    frame.gimbal_az_rad = pointing.az_rad;
+    frame.gimbal_el_rad = pointing.el_rad;
+
+    traced_.set_time_window(frame.start_time_s, frame.end_time_s, scenario_.render.motion_steps);
+
+    std::vector<std::vector<Return>> by_row(static_cast<std::size_t>(raster_.rows()));
+    tbb::parallel_for(0, raster_.rows(), [&](int row) {
+        by_row[static_cast<std::size_t>(row)] = trace_row(row, pointing, frame.start_time_s, index);
+    });
+    std::size_t total = 0;
+    for (const auto& r : by_row) total += r.size();
+    frame.returns.reserve(total);
+    for (auto& r : by_row) frame.returns.insert(frame.returns.end(), r.begin(), r.end());
+
+    frame.ground_truth = ground_truth(0.5 * (frame.start_time_s + frame.end_time_s), frame.returns);
+    return frame;
+}
+
+}  // namespace ladarsim::sensor_model

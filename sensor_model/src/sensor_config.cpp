@@ -1,0 +1,104 @@
+#include "ladarsim/sensor_model/sensor_config.h"
+
+#include <numbers>
+#include <stdexcept>
+
+#include "ladarsim/scene/input_error.h"
+
+namespace ladarsim::sensor_model {
+
+namespace {
+constexpr double kSpeedOfLight_mps = 299'792'458.0;
+}
+
+std::string to_string(GalvoSweep sweep) { return sweep == GalvoSweep::sawtooth ? "sawtooth" : "triangle"; }
+
+double SensorConfig::line_duration_s() const {
+    return sweep == GalvoSweep::sawtooth ? 1.0 / galvo_rate_hz : 0.5 / galvo_rate_hz;
+}
+double SensorConfig::frame_scan_duration_s() const { return beams_el * line_duration_s(); }
+double SensorConfig::beam_dwell_s() const { return line_duration_s() / beams_az; }
+double SensorConfig::pulses_per_beam() const { return pulse_rate_hz * beam_dwell_s(); }
+double SensorConfig::unambiguous_range_m() const { return kSpeedOfLight_mps / (2.0 * pulse_rate_hz); }
+double SensorConfig::beam_pitch_az_mrad() const { return field_az_deg * std::numbers::pi / 180.0 / beams_az * 1e3; }
+double SensorConfig::beam_pitch_el_mrad() const { return field_el_deg * std::numbers::pi / 180.0 / beams_el * 1e3; }
+double SensorConfig::beams_per_second() const { return double(beams_az) * beams_el * frame_rate_hz; }
+
+void SensorConfig::validate(const std::string& file) const {
+    auto fail = [&](const char* field, const std::string& problem) {
+        throw InputError(file, std::string("sensor.") + field, problem);
+    };
+    if (frame_scan_duration_s() > 1.0 / frame_rate_hz * (1.0 + 1e-12)) {
+        fail("frame_rate_hz", "a frame needs " + std::to_string(frame_scan_duration_s() * 1e3) +
+                                  " ms of galvo sweep, longer than the frame period of " +
+                                  std::to_string(1e3 / frame_rate_hz) + " ms");
+    }
+    if (gimbal_el_min_deg >= gimbal_el_max_deg) fail("gimbal_el_min_deg", "must be below gimbal_el_max_deg");
+}
+
+std::vector<std::string> sensor_presets() { return {"paper_ladar"}; }
+
+SensorConfig sensor_preset(const std::string& name) {
+    if (name == "paper_ladar") return SensorConfig{};
+    throw std::invalid_argument("unknown sensor preset \"" + name + "\"");
+}
+
+SensorConfig read_sensor_config(JsonFields& sensor) {
+    SensorConfig c = sensor_preset(sensor.choice("preset", sensor_presets(), "paper_ladar"));
+    c.wavelength_nm = sensor.number("wavelength_nm", 200.0, 20000.0, c.wavelength_nm);
+    c.field_az_deg = sensor.number("field_az_deg", 1e-4, 180.0, c.field_az_deg);
+    c.field_el_deg = sensor.number("field_el_deg", 1e-4, 180.0, c.field_el_deg);
+    c.beams_az = static_cast<int>(sensor.integer("beams_az", 1, 65535, c.beams_az));
+    c.beams_el = static_cast<int>(sensor.integer("beams_el", 1, 65535, c.beams_el));
+    c.divergence_mrad = sensor.number("divergence_mrad", 1e-4, 100.0, c.divergence_mrad);
+    c.galvo_rate_hz = sensor.number("galvo_rate_hz", 1e-3, 1e7, c.galvo_rate_hz);
+    const std::string sweep = sensor.choice("sweep", {"sawtooth", "triangle"}, to_string(c.sweep));
+    c.sweep = sweep == "sawtooth" ? GalvoSweep::sawtooth : GalvoSweep::triangle;
+    c.frame_rate_hz = sensor.number("frame_rate_hz", 1e-3, 1e4, c.frame_rate_hz);
+    c.pulse_rate_hz = sensor.number("pulse_rate_hz", 1.0, 1e9, c.pulse_rate_hz);
+    c.max_range_m = sensor.number("max_range_m", 1.0, 1e6, c.max_range_m);
+    c.gimbal_az_limit_deg = sensor.number("gimbal_az_limit_deg", 0.0, 180.0, c.gimbal_az_limit_deg);
+    c.gimbal_el_min_deg = sensor.number("gimbal_el_min_deg", -90.0, 90.0, c.gimbal_el_min_deg);
+    c.gimbal_el_max_deg = sensor.number("gimbal_el_max_deg", -90.0, 90.0, c.gimbal_el_max_deg);
+    c.gimbal_slew_rate_dps = sensor.number("gimbal_slew_rate_dps", 0.0, 1e4, c.gimbal_slew_rate_dps);
+    c.footprint_samples = static_cast<int>(sensor.integer("footprint_samples", 1, 4096, c.footprint_samples));
+    c.footprint_truncation = sensor.number("footprint_truncation", 0.1, 4.0, c.footprint_truncation);
+    c.return_gap_m = sensor.number("return_gap_m", 0.0, 1e3, c.return_gap_m);
+    c.validate(sensor.file());
+    return c;
+}
+
+nlohmann::json to_json(const SensorConfig& c) {
+    return {
+        {"preset", c.preset},
+        {"wavelength_nm", c.wavelength_nm},
+        {"field_az_deg", c.field_az_deg},
+        {"field_el_deg", c.field_el_deg},
+        {"beams_az", c.beams_az},
+        {"beams_el", c.beams_el},
+        {"divergence_mrad", c.divergence_mrad},
+        {"galvo_rate_hz", c.galvo_rate_hz},
+        {"sweep", to_string(c.sweep)},
+        {"frame_rate_hz", c.frame_rate_hz},
+        {"pulse_rate_hz", c.pulse_rate_hz},
+        {"max_range_m", c.max_range_m},
+        {"gimbal_az_limit_deg", c.gimbal_az_limit_deg},
+        {"gimbal_el_min_deg", c.gimbal_el_min_deg},
+        {"gimbal_el_max_deg", c.gimbal_el_max_deg},
+        {"gimbal_slew_rate_dps", c.gimbal_slew_rate_dps},
+        {"footprint_samples", c.footprint_samples},
+        {"footprint_truncation", c.footprint_truncation},
+        {"return_gap_m", c.return_gap_m},
+        {"derived",
+         {{"line_duration_s", c.line_duration_s()},
+          {"frame_scan_duration_s", c.frame_scan_duration_s()},
+          {"beam_dwell_s", c.beam_dwell_s()},
+          {"pulses_per_beam", c.pulses_per_beam()},
+          {"unambiguous_range_m", c.unambiguous_range_m()},
+          {"beam_pitch_az_mrad", c.beam_pitch_az_mrad()},
+          {"beam_pitch_el_mrad", c.beam_pitch_el_mrad()},
+          {"beams_per_second", c.beams_per_second()}}},
+    };
+}
+
+}  // namespace ladarsim::sensor_model
