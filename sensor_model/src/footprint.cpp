@@ -14,10 +14,11 @@ Footprint::Footprint(double divergence_rad, int samples, double truncation)
     }
     const double captured = -std::expm1(-2.0 * truncation * truncation);
     const double golden_angle = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    const int rings = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples)))));
     cells_.reserve(static_cast<std::size_t>(samples));
     int first = 0;
-    for (int ring = 0; first < samples; ++ring) {
-        const int in_ring = std::min(ring == 0 ? 1 : 6 * ring, samples - first);
+    for (int ring = 0; ring < rings; ++ring) {
+        const int in_ring = samples / rings + (ring < samples % rings ? 1 : 0);
         const double lo = captured * first / samples;
         const double hi = captured * (first + in_ring) / samples;
         const double sector = 2.0 * std::numbers::pi / in_ring;
@@ -39,8 +40,8 @@ SubRay Footprint::place(const Cell& cell, double u_energy, double u_angle) const
 
 void Footprint::fixed(std::span<SubRay> out) const {
     for (std::size_t i = 0; i < cells_.size(); ++i) {
-        // Cell 0 is the central disc, whose energy median is its centre (the beam axis).
-        out[i] = i == 0 ? SubRay{0.0, 0.0, 1.0 / static_cast<double>(cells_.size())} : place(cells_[i], 0.5, 0.5);
+        // A lone sample stands for the whole disc: its natural place is the beam axis.
+        out[i] = cells_.size() == 1 ? SubRay{0.0, 0.0, 1.0} : place(cells_[i], 0.5, 0.5);
     }
 }
 

@@ -17,13 +17,13 @@ struct SubRay {
 /// truncated at r_max = truncation * w, holding F = 1 - exp(-2 truncation^2) of the energy
 /// (98.9 % at the default 1.5); the weights are renormalised to carry the whole pulse.
 ///
-/// Stratification: the truncated disc is cut into `samples` cells of equal energy: a central
-/// disc, then rings of 6, 12, 18, ... cells (the last ring takes the remainder), each ring
+/// Stratification: the truncated disc is cut into N = `samples` cells of equal energy, a grid
+/// in (enclosed energy, angle): round(sqrt(N)) rings of about sqrt(N) sectors each, each ring
 /// turned by the golden angle so cells do not line up radially. Since the energy enclosed
 /// within radius r is F(r) = 1 - exp(-2 r^2 / w^2), a ring holding cells k0..k1 spans the
 /// radii where F(r)/F(r_max) = k0/N .. k1/N: every weight is exactly 1/N.
-/// A sub-ray sits at the energy median of its cell (the centre for the central disc), or,
-/// with jitter, at a point drawn from the Gaussian restricted to the cell.
+/// A sub-ray sits at the energy median of its cell (on the axis when N = 1), or, with jitter,
+/// at a point drawn from the Gaussian restricted to its cell (an unbiased estimate).
 class Footprint {
 public:
     Footprint(double divergence_rad, int samples, double truncation);

@@ -1,0 +1,78 @@
+// GalvoRaster against the paper's specification: 150 x 20 beams in 0.5 x 0.5 deg, 1 kHz galvo.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "ladarsim/sensor_model/galvo_raster.h"
+
+using namespace ladarsim::sensor_model;
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+}
+
+TEST_CASE("paper raster: beam centres sit at cell centres of the 0.5 deg field", "[galvo_raster]") {
+    const GalvoRaster raster(SensorConfig{});
+    REQUIRE(raster.columns() == 150);
+    REQUIRE(raster.rows() == 20);
+    const double pitch_az = 0.5 * kDeg / 150.0;
+    const double pitch_el = 0.5 * kDeg / 20.0;
+
+    const RasterBeam first = raster.beam(0);
+    CHECK(first.column == 0);
+    CHECK(first.row == 0);
+    // Top-left beam: half a pitch inside the field's left and top edges.
+    CHECK(first.az_offset_rad == Approx(0.25 * kDeg - 0.5 * pitch_az).epsilon(1e-14));
+    CHECK(first.el_offset_rad == Approx(0.25 * kDeg - 0.5 * pitch_el).epsilon(1e-14));
+
+    const RasterBeam last = raster.beam(raster.beam_count() - 1);
+    CHECK(last.column == 149);
+    CHECK(last.row == 19);
+    CHECK(last.az_offset_rad == Approx(-0.25 * kDeg + 0.5 * pitch_az).epsilon(1e-14));
+    CHECK(last.el_offset_rad == Approx(-0.25 * kDeg + 0.5 * pitch_el).epsilon(1e-14));
+
+    for (int i = 1; i < 150; ++i) {
+        CHECK(raster.beam(i - 1).az_offset_rad - raster.beam(i).az_offset_rad == Approx(pitch_az).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("paper raster: sawtooth timing, one line per 1 ms galvo period", "[galvo_raster]") {
+    const GalvoRaster raster(SensorConfig{});
+    CHECK(raster.beam(0).time_offset_s == 0.0);
+    CHECK(raster.beam(1).time_offset_s == Approx(1e-3 / 150.0).epsilon(1e-14));
+    CHECK(raster.beam(149).time_offset_s == Approx(149e-3 / 150.0).epsilon(1e-14));
+    CHECK(raster.beam(150).time_offset_s == Approx(1e-3).epsilon(1e-14));
+    CHECK(raster.beam(150).column == 0);
+    CHECK(raster.beam(2999).time_offset_s == Approx(19e-3 + 149e-3 / 150.0).epsilon(1e-14));
+    // Emission times strictly increase in firing order.
+    for (int i = 1; i < raster.beam_count(); ++i) {
+        REQUIRE(raster.beam(i).time_offset_s > raster.beam(i - 1).time_offset_s);
+    }
+}
+
+TEST_CASE("triangle sweep: two lines per period, odd lines right to left", "[galvo_raster]") {
+    SensorConfig c;
+    c.sweep = GalvoSweep::triangle;
+    const GalvoRaster raster(c);
+    CHECK(c.frame_scan_duration_s() == Approx(10e-3));
+    const RasterBeam b = raster.beam(150);  // first beam of the second line
+    CHECK(b.row == 1);
+    CHECK(b.column == 149);
+    CHECK(b.time_offset_s == Approx(0.5e-3).epsilon(1e-14));
+    CHECK(raster.beam(299).column == 0);
+    CHECK(raster.beam(300).column == 0);
+}
+
+TEST_CASE("sensor preset derived quantities expose the paper's inconsistencies", "[sensor_config]") {
+    const SensorConfig c;
+    CHECK(c.frame_scan_duration_s() == Approx(20e-3));
+    CHECK(c.beam_dwell_s() == Approx(1e-3 / 150.0));
+    // 1 MHz laser over 150 kHz beam positions: 6.67 pulses per beam.
+    CHECK(c.pulses_per_beam() == Approx(1e6 / 150e3));
+    // c / (2 * 1 MHz) = 149.9 m, far below the 2 km design range.
+    CHECK(c.unambiguous_range_m() == Approx(149.896229).epsilon(1e-8));
+    // Beam pitch 58 urad against a 620 urad divergence: footprints overlap about tenfold.
+    CHECK(c.beam_pitch_az_mrad() == Approx(0.5 * std::numbers::pi / 180.0 / 150.0 * 1e3));
+    CHECK(c.beams_per_second() == Approx(60000.0));
+}
