@@ -1,0 +1,36 @@
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "ladarsim/sensor_model/scenario.h"
+
+namespace ladarsim::sensor_model {
+
+struct DatasetOptions {
+    std::filesystem::path out_dir;
+    std::optional<int> frames;          ///< overrides the scenario's render.frames
+    std::optional<std::uint64_t> seed;  ///< overrides the scenario's render.seed
+    int threads = 0;                    ///< 0 = all cores
+    /// Called after each frame is on disk.
+    std::function<void(int frames_done, int frames_total)> progress;
+};
+
+struct DatasetSummary {
+    int frames = 0;
+    std::uint64_t returns = 0;
+    std::map<std::uint32_t, std::uint64_t> returns_by_object;  ///< object id -> returns over all frames
+    double render_seconds = 0.0;
+    double beams_per_second = 0.0;
+    std::filesystem::path out_dir;
+};
+
+/// Renders every frame of a scenario and writes the dataset:
+///   frames/NNNNNN.pcd, frames/NNNNNN.exr, ground_truth.json, manifest.json
+/// Each file is written under a temporary name and renamed when complete.
+DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options);
+
+}  // namespace ladarsim::sensor_model
