@@ -1,0 +1,219 @@
+#include "ladarsim/scene/background_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/common/centroid.h>
+#include <pcl/common/eigen.h>
+#include <pcl/exceptions.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_types.h>
+#include <spdlog/spdlog.h>
+
+#include "ladarsim/scene/input_error.h"
+
+namespace ladarsim::scene {
+
+namespace {
+
+/// One scalar field of a PCLPointCloud2, whatever its stored type.
+class FieldReader {
+public:
+    FieldReader(const pcl::PCLPointCloud2& cloud, const pcl::PCLPointField& field)
+        : cloud_(cloud), offset_(field.offset), datatype_(field.datatype) {}
+
+    double operator()(std::size_t point) const {
+        const std::uint8_t* p = cloud_.data.data() + point * cloud_.point_step + offset_;
+        switch (datatype_) {
+            case pcl::PCLPointField::INT8: return read<std::int8_t>(p);
+            case pcl::PCLPointField::UINT8: return read<std::uint8_t>(p);
+            case pcl::PCLPointField::INT16: return read<std::int16_t>(p);
+            case pcl::PCLPointField::UINT16: return read<std::uint16_t>(p);
+            case pcl::PCLPointField::INT32: return read<std::int32_t>(p);
+            case pcl::PCLPointField::UINT32: return read<std::uint32_t>(p);
+            case pcl::PCLPointField::INT64: return static_cast<double>(read<std::int64_t>(p));
+            case pcl::PCLPointField::UINT64: return static_cast<double>(read<std::uint64_t>(p));
+            case pcl::PCLPointField::FLOAT32: return read<float>(p);
+            case pcl::PCLPointField::FLOAT64: return read<double>(p);
+            default: return std::nan("");
+        }
+    }
+
+private:
+    template <typename T>
+    static T read(const std::uint8_t* p) {
+        T v;
+        std::memcpy(&v, p, sizeof v);  // fields need not be aligned
+        return v;
+    }
+    const pcl::PCLPointCloud2& cloud_;
+    std::uint32_t offset_;
+    std::uint8_t datatype_;
+};
+
+const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& cloud, const std::string& name) {
+    for (const auto& f : cloud.fields) {
+        if (f.name == name) return &f;
+    }
+    return nullptr;
+}
+
+pcl::PCLPointCloud2 read_pcd(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    if (!std::filesystem::is_regular_file(file)) throw InputError(name, "(file)", "no such file");
+    pcl::PCLPointCloud2 cloud;
+    int status = -1;
+    try {
+        status = pcl::io::loadPCDFile(name, cloud);
+    } catch (const pcl::PCLException& e) {
+        throw InputError(name, "(file)", std::string("not a readable PCD file: ") + e.what());
+    }
+    if (status < 0) throw InputError(name, "(file)", "not a readable PCD file");
+    const std::size_t n = std::size_t{cloud.width} * cloud.height;
+    if (cloud.data.size() < n * cloud.point_step) {
+        throw InputError(name, "(file)", "PCD data is shorter than its header says");
+    }
+    return cloud;
+}
+
+/// Least-squares plane normal of the neighbourhood, or nullopt when the points do not span a
+/// plane (fewer than three distinct points, or all on one line). PCL's NormalEstimation returns
+/// NaN only for the first case and an arbitrary normal for the second, so the eigenvalues are
+/// checked here.
+std::optional<Eigen::Vector3f> plane_normal(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                                            const pcl::Indices& neighbours) {
+    Eigen::Matrix3d covariance;
+    Eigen::Vector4d centroid;
+    if (pcl::computeMeanAndCovarianceMatrix(cloud, neighbours, covariance, centroid) < 3) return std::nullopt;
+    Eigen::Matrix3d eigenvectors;
+    Eigen::Vector3d eigenvalues;  // ascending
+    pcl::eigen33(covariance, eigenvectors, eigenvalues);
+    // A middle eigenvalue a millionth of the largest means the points lie on a line to within
+    // a thousandth of its length: any normal about that line fits equally well.
+    if (!(eigenvalues[1] > 1e-6 * eigenvalues[2])) return std::nullopt;
+    Eigen::Vector3f normal = eigenvectors.col(0).cast<float>().normalized();
+    if (!normal.allFinite()) return std::nullopt;
+    return normal;
+}
+
+}  // namespace
+
+BackgroundMap load_background_map(const std::filesystem::path& file, const BackgroundOptions& options,
+                                  BackgroundLoadReport* report) {
+    const std::string name = file.string();
+    const pcl::PCLPointCloud2 cloud2 = read_pcd(file);
+    const pcl::PCLPointField* fx = find_field(cloud2, "x");
+    const pcl::PCLPointField* fy = find_field(cloud2, "y");
+    const pcl::PCLPointField* fz = find_field(cloud2, "z");
+    if (!fx || !fy || !fz) throw InputError(name, "FIELDS", "needs fields x, y and z");
+    const pcl::PCLPointField* fi = find_field(cloud2, "intensity");
+    const FieldReader x(cloud2, *fx), y(cloud2, *fy), z(cloud2, *fz);
+    std::optional<FieldReader> intensity_of;
+    if (fi) intensity_of.emplace(cloud2, *fi);
+
+    BackgroundLoadReport local_report;
+    BackgroundLoadReport& rep = report ? *report : local_report;
+    rep = BackgroundLoadReport{};
+
+    BackgroundMap map;
+    map.source = name;
+    std::vector<double> intensity;
+    const std::size_t n_file = std::size_t{cloud2.width} * cloud2.height;
+    map.points_world.reserve(n_file);
+    for (std::size_t i = 0; i < n_file; ++i) {
+        const Eigen::Vector3d p(x(i), y(i), z(i));
+        if (!p.allFinite()) {
+            ++rep.nonfinite_dropped;
+            continue;
+        }
+        map.points_world.push_back(p + options.offset_m);
+        if (intensity_of) {
+            const double v = (*intensity_of)(i);
+            intensity.push_back(std::isfinite(v) ? std::max(v, 0.0) : 0.0);
+        }
+    }
+    const std::size_t n = map.points_world.size();
+    rep.points_loaded = n;
+    if (n < 5) {
+        throw InputError(name, "(file)", "has " + std::to_string(n) +
+                                             " finite points; a background map needs at least 5 "
+                                             "(four neighbours set each disc's size)");
+    }
+
+    // Geo-referenced coordinates (1e5..1e6 m) would lose centimetres in float: the k-d tree and
+    // the plane fits work relative to the map's centroid.
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const auto& p : map.points_world) centre += p / static_cast<double>(n);
+    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+    cloud->resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3f q = (map.points_world[i] - centre).cast<float>();
+        (*cloud)[i] = pcl::PointXYZ(q.x(), q.y(), q.z());
+    }
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+    tree.setInputCloud(cloud);
+
+    // The search returns the point itself first, then its neighbours by distance.
+    const int k_normal = std::clamp(options.normal_neighbours, 3, static_cast<int>(n));
+    const int k_search = std::max(k_normal, 5);
+    map.normals.resize(n);
+    map.radii_m.resize(n);
+    pcl::Indices neighbours;
+    std::vector<float> squared_distances;
+    for (std::size_t i = 0; i < n; ++i) {
+        tree.nearestKSearch((*cloud)[i], k_search, neighbours, squared_distances);
+        const pcl::Indices plane_points(neighbours.begin(), neighbours.begin() + k_normal);
+        if (auto normal = plane_normal(*cloud, plane_points)) {
+            map.normals[i] = normal->z() < 0.0f ? Eigen::Vector3f(-*normal) : *normal;
+        } else {
+            map.normals[i] = Eigen::Vector3f::UnitZ();
+            ++rep.degenerate_normals;
+        }
+        const double sum_d2 = static_cast<double>(squared_distances[1]) + squared_distances[2] +
+                              squared_distances[3] + squared_distances[4];
+        map.radii_m[i] = static_cast<float>(std::sqrt(sum_d2 / 8.0));
+    }
+
+    std::vector<float> sorted = map.radii_m;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
+    const float median = sorted[n / 2];
+    const float lo = static_cast<float>(kMinRadiusOfMedian) * median;
+    const float hi = static_cast<float>(kMaxRadiusOfMedian) * median;
+    for (float& r : map.radii_m) {
+        if (r < lo || r > hi) {
+            r = std::clamp(r, lo, hi);
+            ++rep.radii_clamped;
+        }
+    }
+
+    const double i_max = intensity.empty() ? 0.0 : *std::max_element(intensity.begin(), intensity.end());
+    if (!options.reflectance && i_max > 0.0) {
+        rep.reflectance_from_intensity = true;
+        map.reflectance.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            map.reflectance[i] = static_cast<float>(options.reflectance_at_max_intensity * intensity[i] / i_max);
+        }
+    } else {
+        if (!options.reflectance && fi) {
+            spdlog::warn("{}: every intensity is zero; using reflectance {}", name, kDefaultReflectance);
+        }
+        map.reflectance.assign(n, static_cast<float>(options.reflectance.value_or(kDefaultReflectance)));
+    }
+
+    if (rep.nonfinite_dropped > 0) spdlog::warn("{}: dropped {} non-finite points", name, rep.nonfinite_dropped);
+    if (rep.degenerate_normals > 0) {
+        spdlog::warn("{}: {} points have no plane of neighbours; their normals are set to +z", name,
+                     rep.degenerate_normals);
+    }
+    spdlog::info("{}: {} background points, median disc radius {:.3f} m", name, n, median);
+    return map;
+}
+
+}  // namespace ladarsim::scene
