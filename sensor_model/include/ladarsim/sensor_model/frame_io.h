@@ -1,0 +1,19 @@
+#pragma once
+// A rendered frame on disk: frames/NNNNNN.pcd (the point cloud), frames/NNNNNN.exr (the range
+// image), plus ground_truth.json and manifest.json for the whole run. Every file is written
+// atomically: it appears complete under its final name or not at all.
+#include <cstdint>
+#include <string>
+
+#include "ladarsim/sensor_model/exr_file.h"
+#include "ladarsim/sensor_model/ground_truth_file.h"
+#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/sensor_model/pcd_file.h"
+
+namespace ladarsim::sensor_model {
+
+/// The file name of a frame without extension: six digits, zero-padded ("000042"), so that
+/// names sort in frame order; larger indices simply use more digits.
+std::string frame_file_stem(std::uint64_t index);
+
+}  // namespace ladarsim::sensor_model

@@ -1,0 +1,23 @@
+#pragma once
+// Frames as PCD v0.7 point clouds (the format of PCL, read by CloudCompare and pcl_viewer).
+#include <filesystem>
+#include <vector>
+
+#include "ladarsim/sensor_model/frame.h"
+
+namespace ladarsim::sensor_model {
+
+/// Writes the frame's returns as a binary PCD, one point per return, packed (49 bytes a point):
+///   x y z intensity (F4), range_m time_s (F8), beam_az beam_el (F4, rad),
+///   column row (U2), return_index (U1), object_id (U4);
+/// WIDTH = returns, HEIGHT = 1, VIEWPOINT at the sensor origin. Atomic (see AtomicFile).
+void write_frame_pcd(const std::filesystem::path& path, const Frame& frame);
+
+/// Reads a PCD written by write_frame_pcd, or a recorded cloud (DATA binary or ascii) that has
+/// at least x y z: fields it lacks stay 0, fields it has that a Return lacks are skipped.
+/// Points whose x, y or z is NaN are skipped: PCL marks beams without a return that way in
+/// organised clouds. Throws InputError naming the file and the header keyword (or DATA) for a
+/// malformed header, truncated data or a value that does not fit its Return field.
+std::vector<Return> read_frame_pcd(const std::filesystem::path& path);
+
+}  // namespace ladarsim::sensor_model

@@ -1,0 +1,29 @@
+#include "ladarsim/sensor_model/json_file.h"
+
+#include <fstream>
+
+#include "ladarsim/scene/input_error.h"
+#include "ladarsim/sensor_model/atomic_file.h"
+
+namespace ladarsim::sensor_model {
+
+void write_json(const std::filesystem::path& path, const nlohmann::json& value) {
+    // Serialised before the file is created, so a value that cannot be written (invalid UTF-8)
+    // leaves nothing behind.
+    const std::string text = value.dump(2) + '\n';
+    AtomicFile out(path);
+    out.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.commit();
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path.string(), "(file)", "cannot open");
+    try {
+        return nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError(path.string(), "(file)", std::string("not valid JSON: ") + e.what());
+    }
+}
+
+}  // namespace ladarsim::sensor_model
