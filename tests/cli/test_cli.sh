@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# End-to-end checks of the ladarsim command line: bad input is one clear line, a non-zero exit,
+# and nothing written; a good scenario writes a complete dataset.
+# Usage: test_cli.sh LADARSIM_BINARY SOURCE_DIR
+set -u
+bin=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# Each bad scenario: expected exit 2, one line on stderr naming the file and the field.
+expect_error() {
+  local scenario=$1 field=$2
+  local out="$work/out-$(basename "$scenario" .json)"
+  "$bin" render "$scenario" --out "$out" --quiet >"$work/stdout" 2>"$work/stderr"
+  local rc=$?
+  [ "$rc" -eq 2 ] || fail "$scenario: exit code $rc, expected 2"
+  [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "$scenario: expected one line on stderr, got: $(cat "$work/stderr")"
+  grep -q "$(basename "$scenario")" "$work/stderr" || fail "$scenario: message does not name the file: $(cat "$work/stderr")"
+  grep -qF "$field" "$work/stderr" || fail "$scenario: message does not name '$field': $(cat "$work/stderr")"
+  [ ! -e "$out" ] || fail "$scenario: output directory was created"
+}
+
+expect_error "$src/tests/cli/bad/unknown_top_key.json" "framez"
+expect_error "$src/tests/cli/bad/unknown_sensor_key.json" "sensor.beams_azz"
+expect_error "$src/tests/cli/bad/zero_beams.json" "sensor.beams_az"
+expect_error "$src/tests/cli/bad/wide_field.json" "sensor.field_az_deg"
+expect_error "$src/tests/cli/bad/missing_model.json" "objects[0].model"
+expect_error "$src/tests/cli/bad/not_json.json" "not valid JSON"
+expect_error "$work/does_not_exist.json" "cannot open"
+
+# A good run: every file present, no temporaries left, frames identical with 1 and 2 threads.
+good="$src/tests/cli/small.json"
+"$bin" render "$good" --out "$work/t1" --threads 1 --quiet >/dev/null || fail "small scenario did not render"
+"$bin" render "$good" --out "$work/t2" --threads 2 --quiet >/dev/null || fail "small scenario did not render with 2 threads"
+for f in manifest.json ground_truth.json frames/000000.pcd frames/000000.exr frames/000002.pcd frames/000002.exr; do
+  [ -s "$work/t1/$f" ] || fail "missing $f"
+done
+[ -z "$(find "$work/t1" -name '*.tmp')" ] || fail "temporary files left behind"
+for f in "$work"/t1/frames/*; do
+  cmp -s "$f" "$work/t2/frames/$(basename "$f")" || fail "$(basename "$f") differs between 1 and 2 threads"
+done
+cmp -s "$work/t1/ground_truth.json" "$work/t2/ground_truth.json" || fail "ground truth differs between 1 and 2 threads"
+
+if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else echo "cli: $failures failed"; exit 1; fi
