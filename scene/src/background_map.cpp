@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,9 +68,52 @@ const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& cloud, const std
     return nullptr;
 }
 
+/// PCL's reader trusts the header (random bytes can crash it), so the header is checked first:
+/// only PCD keywords before DATA, one SIZE, TYPE and COUNT per field, and a point count.
+void check_pcd_header(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError(name, "(file)", "cannot open the file");
+    std::size_t fields = 0;
+    bool has_size = false, has_type = false, has_points = false;
+    std::string line;
+    for (int line_number = 1; line_number <= 64 && std::getline(in, line); ++line_number) {
+        const auto bad = [&](const std::string& problem) {
+            throw InputError(name, "header line " + std::to_string(line_number), "not a PCD file: " + problem);
+        };
+        if (line.size() > 4096) bad("line too long");
+        std::istringstream words(line);
+        std::string key;
+        words >> key;
+        if (key.empty() || key[0] == '#') continue;
+        const std::vector<std::string> values{std::istream_iterator<std::string>(words), {}};
+        if (key == "VERSION" || key == "VIEWPOINT" || key == "WIDTH" || key == "HEIGHT") continue;
+        if (key == "FIELDS") {
+            fields = values.size();
+        } else if (key == "SIZE" || key == "TYPE" || key == "COUNT") {
+            if (fields == 0 || values.size() != fields) bad(key + " needs one entry per field, after FIELDS");
+            has_size = has_size || key == "SIZE";
+            has_type = has_type || key == "TYPE";
+        } else if (key == "POINTS") {
+            has_points = values.size() == 1 && values[0].find_first_not_of("0123456789") == std::string::npos;
+            if (!has_points) bad("POINTS needs one whole number");
+        } else if (key == "DATA") {
+            if (values.size() != 1 || (values[0] != "ascii" && values[0] != "binary" && values[0] != "binary_compressed")) {
+                bad("DATA must be ascii, binary or binary_compressed");
+            }
+            if (!has_size || !has_type || !has_points) bad("FIELDS, SIZE, TYPE and POINTS must come before DATA");
+            return;
+        } else {
+            bad("unexpected \"" + key.substr(0, 32) + "\"");
+        }
+    }
+    throw InputError(name, "(header)", "not a PCD file: no DATA line in the first 64 lines");
+}
+
 pcl::PCLPointCloud2 read_pcd(const std::filesystem::path& file) {
     const std::string name = file.string();
     if (!std::filesystem::is_regular_file(file)) throw InputError(name, "(file)", "no such file");
+    check_pcd_header(file);
     pcl::PCLPointCloud2 cloud;
     int status = -1;
     try {

@@ -1,6 +1,7 @@
 #include "ladarsim/scene/json_fields.h"
 
 #include <cmath>
+#include <limits>
 
 #include "ladarsim/scene/input_error.h"
 
@@ -54,10 +55,12 @@ double JsonFields::number(const std::string& key, double min, double max, double
 long long JsonFields::integer(const std::string& key, long long min, long long max) {
     const auto& v = get(key);
     if (!v.is_number_integer()) fail(key, std::string("expected a whole number, found ") + v.dump());
-    const long long x = v.get<long long>();
-    if (x < min || x > max) {
-        fail(key, "value " + std::to_string(x) + " is outside [" + std::to_string(min) + ", " +
-                      std::to_string(max) + "]");
+    // nlohmann keeps 2^63..2^64-1 as unsigned; get<long long> would wrap them to negatives.
+    const bool fits = !v.is_number_unsigned() ||
+                      v.get<unsigned long long>() <= static_cast<unsigned long long>(std::numeric_limits<long long>::max());
+    const long long x = fits ? v.get<long long>() : 0;
+    if (!fits || x < min || x > max) {
+        fail(key, "value " + v.dump() + " is outside [" + std::to_string(min) + ", " + std::to_string(max) + "]");
     }
     return x;
 }

@@ -1,0 +1,311 @@
+// load_background_map: PCD points to oriented discs. Normals, radii and reflectance are checked
+// against the plane, the grid spacing and the intensities the test wrote, computed by hand.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ladarsim/scene/background_map.h"
+#include "ladarsim/scene/input_error.h"
+
+using namespace ladarsim::scene;
+using ladarsim::InputError;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PcdPoint {
+    double x, y, z, intensity = 0.0;
+};
+
+/// A fresh directory for one test's files, removed at the end of the test.
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        std::random_device rd;
+        path = fs::temp_directory_path() / ("ladarsim-test-background-" + std::to_string(rd()));
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+/// Writes an ASCII PCD with double coordinates (so geo-referenced values survive the file).
+fs::path write_pcd(const fs::path& file, const std::vector<PcdPoint>& points, bool with_intensity) {
+    std::ofstream out(file);
+    out << "# .PCD v0.7\nVERSION 0.7\n";
+    out << (with_intensity ? "FIELDS x y z intensity\nSIZE 8 8 8 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                           : "FIELDS x y z\nSIZE 8 8 8\nTYPE F F F\nCOUNT 1 1 1\n");
+    out << "WIDTH " << points.size() << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points.size()
+        << "\nDATA ascii\n";
+    out << std::setprecision(17);
+    for (const auto& p : points) {
+        out << p.x << ' ' << p.y << ' ' << p.z;
+        if (with_intensity) out << ' ' << p.intensity;
+        out << '\n';
+    }
+    return file;
+}
+
+/// nx by ny nodes with spacings sx, sy, on the plane z = a x + b y + c, starting at (x0, y0).
+std::vector<PcdPoint> grid(int nx, int ny, double sx, double sy, double a = 0.0, double b = 0.0, double c = 0.0,
+                           double x0 = 0.0, double y0 = 0.0) {
+    std::vector<PcdPoint> pts;
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            const double dx = i * sx, dy = j * sy;
+            pts.push_back({x0 + dx, y0 + dy, a * dx + b * dy + c});
+        }
+    }
+    return pts;
+}
+
+}  // namespace
+
+TEST_CASE("background_map: normals of a tilted plane equal its analytic normal, at geo-referenced coordinates",
+          "[background_map]") {
+    TempDir dir;
+    // z = a x + b y + c (x, y relative to the grid origin) has normal (-a, -b, 1) / |(-a, -b, 1)|.
+    const double a = 0.3, b = -0.2, c = 150.0;
+    // UTM-sized coordinates: float32 has a 0.5 m ulp at 5e6 m, so only a recentred fit passes.
+    const double x0 = 500000.25, y0 = 5000000.5;
+    const auto pts = grid(15, 12, 0.5, 0.5, a, b, c, x0, y0);
+    BackgroundOptions options;
+    options.offset_m = Eigen::Vector3d(-500000.0, -5000000.0, 10.0);
+    BackgroundLoadReport report;
+    const BackgroundMap map = load_background_map(write_pcd(dir.path / "plane.pcd", pts, false), options, &report);
+
+    REQUIRE(map.points_world.size() == pts.size());
+    REQUIRE(map.normals.size() == pts.size());
+    CHECK(report.points_loaded == pts.size());
+    CHECK(report.degenerate_normals == 0);
+    CHECK(report.nonfinite_dropped == 0);
+    const Eigen::Vector3f expected = Eigen::Vector3f(static_cast<float>(-a), static_cast<float>(-b), 1.0f).normalized();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        // Offset applied in double: the file point plus the offset, exactly as computed here.
+        CHECK(map.points_world[i].x() == pts[i].x + options.offset_m.x());
+        CHECK(map.points_world[i].y() == pts[i].y + options.offset_m.y());
+        CHECK(map.points_world[i].z() == pts[i].z + options.offset_m.z());
+        CHECK((map.normals[i] - expected).norm() < 1e-4f);
+    }
+}
+
+TEST_CASE("background_map: normals point up whichever way the fit returns them", "[background_map]") {
+    TempDir dir;
+    // A steep plane z = -2 x: normal (2, 0, 1)/sqrt(5) after flipping to +z.
+    const auto pts = grid(8, 8, 1.0, 1.0, -2.0, 0.0, 0.0);
+    const BackgroundMap map = load_background_map(write_pcd(dir.path / "steep.pcd", pts, false), {});
+    for (const auto& n : map.normals) {
+        CHECK(n.x() == Approx(2.0 / std::sqrt(5.0)).margin(1e-5));
+        CHECK(n.y() == Approx(0.0).margin(1e-5));
+        CHECK(n.z() == Approx(1.0 / std::sqrt(5.0)).margin(1e-5));
+    }
+}
+
+TEST_CASE("background_map: points on a line have no plane; their normals are +z and counted", "[background_map]") {
+    TempDir dir;
+    std::vector<PcdPoint> line;
+    for (int i = 0; i < 10; ++i) line.push_back({1.0 * i, 0.5 * i, 2.0});
+    BackgroundLoadReport report;
+    const BackgroundMap map = load_background_map(write_pcd(dir.path / "line.pcd", line, false), {}, &report);
+    CHECK(report.degenerate_normals == line.size());
+    for (const auto& n : map.normals) CHECK(n == Eigen::Vector3f::UnitZ());
+}
+
+TEST_CASE("background_map: disc radii on a square grid, by hand", "[background_map]") {
+    TempDir dir;
+    const double s = 0.4;
+    const int nx = 10, ny = 8;
+    BackgroundLoadReport report;
+    const BackgroundMap map =
+        load_background_map(write_pcd(dir.path / "grid.pcd", grid(nx, ny, s, s, 0, 0, 100.0), false), {}, &report);
+    CHECK(report.radii_clamped == 0);
+    // r = sqrt(sum of the 4 nearest squared distances / 8):
+    //   interior node: 4 neighbours at s               -> sqrt(4 s^2 / 8) = s / sqrt(2)
+    //   edge node: 3 at s, then a diagonal at sqrt(2) s -> sqrt(5 s^2 / 8)
+    //   corner: 2 at s, 1 at sqrt(2) s, 1 at 2 s        -> sqrt(8 s^2 / 8) = s
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            const int on_edges = (i == 0 || i == nx - 1) + (j == 0 || j == ny - 1);
+            const double expected = on_edges == 0 ? s / std::sqrt(2.0) : on_edges == 1 ? s * std::sqrt(5.0 / 8.0) : s;
+            INFO("node " << i << ", " << j);
+            CHECK(map.radii_m[static_cast<std::size_t>(j * nx + i)] == Approx(expected).epsilon(1e-5));
+        }
+    }
+}
+
+TEST_CASE("background_map: on a rectangular grid the interior radius is the half diagonal of a cell",
+          "[background_map]") {
+    TempDir dir;
+    const double sx = 0.3, sy = 0.5;
+    const int nx = 9, ny = 9;
+    const BackgroundMap map =
+        load_background_map(write_pcd(dir.path / "rect.pcd", grid(nx, ny, sx, sy), false), {});
+    const double half_diagonal = std::hypot(sx, sy) / 2.0;
+    for (int j = 1; j < ny - 1; ++j) {
+        for (int i = 1; i < nx - 1; ++i) {
+            CHECK(map.radii_m[static_cast<std::size_t>(j * nx + i)] == Approx(half_diagonal).epsilon(1e-5));
+        }
+    }
+}
+
+TEST_CASE("background_map: duplicates and a stray point get radii clamped to the median's band", "[background_map]") {
+    TempDir dir;
+    const double s = 0.4;
+    const int nx = 10, ny = 8;
+    auto pts = grid(nx, ny, s, s);
+    const PcdPoint node = pts[4 * nx + 5];
+    for (int copy = 0; copy < 4; ++copy) pts.push_back(node);  // five points stacked on one node
+    pts.push_back({2.0, 1.5, 50.0});                             // a stray return 50 m up
+    BackgroundLoadReport report;
+    const BackgroundMap map = load_background_map(write_pcd(dir.path / "clamp.pcd", pts, false), {}, &report);
+    const double median = s / std::sqrt(2.0);  // interior nodes are the majority
+    CHECK(report.radii_clamped == 6);
+    CHECK(map.radii_m[4 * nx + 5] == Approx(kMinRadiusOfMedian * median).epsilon(1e-5));
+    for (std::size_t k = pts.size() - 5; k < pts.size() - 1; ++k) {
+        CHECK(map.radii_m[k] == Approx(kMinRadiusOfMedian * median).epsilon(1e-5));
+    }
+    CHECK(map.radii_m.back() == Approx(kMaxRadiusOfMedian * median).epsilon(1e-5));
+    // Neighbours of the stacked node still see four points at s.
+    CHECK(map.radii_m[4 * nx + 4] == Approx(median).epsilon(1e-5));
+}
+
+TEST_CASE("background_map: reflectance from intensity, from the option, or the default", "[background_map]") {
+    TempDir dir;
+    auto pts = grid(3, 3, 1.0, 1.0);
+    const std::vector<double> intensity{0, 50, 100, 200, 25, -10, 150, 175, 80};
+    for (std::size_t i = 0; i < pts.size(); ++i) pts[i].intensity = intensity[i];
+    const fs::path with_i = write_pcd(dir.path / "i.pcd", pts, true);
+
+    SECTION("rho = 0.6 I / I_max, negative intensity read as 0") {
+        BackgroundLoadReport report;
+        const BackgroundMap map = load_background_map(with_i, {}, &report);
+        CHECK(report.reflectance_from_intensity);
+        const std::vector<double> expected{0.0, 0.15, 0.3, 0.6, 0.075, 0.0, 0.45, 0.525, 0.24};
+        for (std::size_t i = 0; i < pts.size(); ++i) CHECK(map.reflectance[i] == Approx(expected[i]).epsilon(1e-6));
+    }
+    SECTION("a chosen brightest reflectance") {
+        BackgroundOptions options;
+        options.reflectance_at_max_intensity = 0.5;
+        const BackgroundMap map = load_background_map(with_i, options);
+        CHECK(map.reflectance[1] == Approx(0.5 * 50.0 / 200.0).epsilon(1e-6));
+        CHECK(map.reflectance[3] == Approx(0.5).epsilon(1e-6));
+    }
+    SECTION("a constant reflectance overrides the intensity") {
+        BackgroundOptions options;
+        options.reflectance = 0.12;
+        BackgroundLoadReport report;
+        const BackgroundMap map = load_background_map(with_i, options, &report);
+        CHECK_FALSE(report.reflectance_from_intensity);
+        for (float r : map.reflectance) CHECK(r == Approx(0.12));
+    }
+    SECTION("no intensity field: the default reflectance") {
+        const BackgroundMap map = load_background_map(write_pcd(dir.path / "no_i.pcd", pts, false), {});
+        for (float r : map.reflectance) CHECK(r == Approx(kDefaultReflectance));
+    }
+}
+
+TEST_CASE("background_map: bad files are InputErrors naming the file", "[background_map]") {
+    TempDir dir;
+    SECTION("missing") {
+        const fs::path file = dir.path / "absent.pcd";
+        try {
+            load_background_map(file, {});
+            FAIL("no error");
+        } catch (const InputError& e) {
+            CHECK(e.file() == file.string());
+            CHECK_THAT(e.problem(), Contains("no such file"));
+        }
+    }
+    SECTION("garbage bytes") {
+        const fs::path file = dir.path / "garbage.pcd";
+        {
+            std::ofstream out(file, std::ios::binary);
+            std::mt19937 rng(7);
+            for (int i = 0; i < 4096; ++i) out.put(static_cast<char>(rng() & 0xFF));
+        }
+        try {
+            load_background_map(file, {});
+            FAIL("no error");
+        } catch (const InputError& e) {
+            CHECK(e.file() == file.string());
+        }
+    }
+    SECTION("a binary PCD cut short") {
+        const fs::path file = dir.path / "short.pcd";
+        {
+            std::ofstream out(file, std::ios::binary);
+            out << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1000\n"
+                   "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1000\nDATA binary\n";
+            const float xyz[3] = {1.0f, 2.0f, 3.0f};
+            for (int i = 0; i < 10; ++i) out.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+        }
+        try {
+            load_background_map(file, {});
+            FAIL("no error");
+        } catch (const InputError& e) {
+            CHECK(e.file() == file.string());
+        }
+    }
+    SECTION("no z field") {
+        const fs::path file = dir.path / "xy.pcd";
+        {
+            std::ofstream out(file);
+            out << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 5\nHEIGHT 1\n"
+                   "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 5\nDATA ascii\n1 2\n3 4\n5 6\n7 8\n9 10\n";
+        }
+        try {
+            load_background_map(file, {});
+            FAIL("no error");
+        } catch (const InputError& e) {
+            CHECK(e.file() == file.string());
+            CHECK_THAT(e.problem(), Contains("x, y and z"));
+        }
+    }
+    SECTION("too few points") {
+        CHECK_THROWS_AS(load_background_map(write_pcd(dir.path / "four.pcd", grid(2, 2, 1, 1), false), {}),
+                        InputError);
+    }
+}
+
+TEST_CASE("background_map: the recorded Autzen map", "[background_map][data]") {
+    const fs::path file = fs::path(LADARSIM_SHARED_DIR) / "data/autzen/autzen_trim.pcd";
+    if (!fs::exists(file)) {
+        WARN("shared data absent, skipping: " << file);
+        return;
+    }
+    BackgroundLoadReport report;
+    const auto t0 = std::chrono::steady_clock::now();
+    const BackgroundMap map = load_background_map(file, {}, &report);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    WARN("autzen_trim.pcd: " << map.points_world.size() << " points in " << seconds << " s, "
+                             << report.degenerate_normals << " degenerate normals, " << report.radii_clamped
+                             << " radii clamped");
+
+    // The counts and the extent are those of the data's README.
+    REQUIRE(map.points_world.size() == 110000);
+    Eigen::AlignedBox3d box;
+    for (const auto& p : map.points_world) box.extend(p);
+    CHECK(box.min().x() == Approx(0.5).margin(0.05));
+    CHECK(box.max().x() == Approx(359.4).margin(0.05));
+    CHECK(box.min().y() == Approx(10.7).margin(0.05));
+    CHECK(box.max().y() == Approx(182.2).margin(0.05));
+    CHECK(box.min().z() == Approx(123.8).margin(0.05));
+    CHECK(box.max().z() == Approx(158.7).margin(0.05));
+
+    // Every normal unit length and not pointing down; the brightest point gets exactly 0.6.
+    CHECK(report.reflectance_from_intensity);
+    bool all_unit_and_up = true;
+    for (const auto& n : map.normals) all_unit_and_up = all_unit_and_up && std::abs(n.norm() - 1.0f) < 1e-5f && n.z() >= 0.0f;
+    CHECK(all_unit_and_up);
+    const auto [lo, hi] = std::minmax_element(map.reflectance.begin(), map.reflectance.end());
+    CHECK(*lo >= 0.0f);
+    CHECK(*hi == Approx(0.6));
+}
