@@ -1,12 +1,12 @@
 #include "ladarsim/sensor_model/scenario.h"
 
-#include <fstream>
 #include <limits>
 
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/scene/json_fields.h"
 #include "ladarsim/scene/scene_file.h"
 #include "ladarsim/scene/trajectory.h"
+#include "ladarsim/sensor_model/json_file.h"
 
 namespace ladarsim::sensor_model {
 
@@ -43,15 +43,9 @@ RenderSettings read_render(JsonFields& render) {
 
 Scenario load_scenario(const std::filesystem::path& file) {
     const std::string name = file.string();
-    std::ifstream in(file);
-    if (!in) throw InputError(name, "(file)", "cannot open the scenario file");
     Scenario s;
     s.file = file;
-    try {
-        s.source = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(name, "(file)", std::string("not valid JSON: ") + e.what());
-    }
+    s.source = read_json(file);
 
     JsonFields top(s.source, name, "");
     {
