@@ -1,0 +1,316 @@
+#include "ladarsim/raytrace/traced_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+namespace ladarsim::raytrace {
+namespace {
+
+// Owning handles: Embree objects are reference counted C handles.
+struct DeviceDeleter { void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); } };
+struct SceneDeleter { void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); } };
+struct GeometryDeleter { void operator()(RTCGeometryTy* g) const { rtcReleaseGeometry(g); } };
+using Device = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
+using EmbreeScene = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+using Geometry = std::unique_ptr<RTCGeometryTy, GeometryDeleter>;
+
+enum class GeometryKind { static_mesh, moving_instance, discs };
+
+// What a geometry id of the top scene stands for.
+struct TopGeometry {
+    GeometryKind kind;
+    Geometry geometry;
+    const scene::SceneObject* object = nullptr;  // null for the background discs
+    const float* vertices = nullptr;              // static meshes: Embree's own vertex buffer (x y z per vertex)
+};
+
+// One BVH per distinct model, instanced by every moving object that uses it.
+struct ModelBvh {
+    EmbreeScene scene;
+    const scene::Model* model;
+};
+
+using Matrix34 = Eigen::Matrix<double, 3, 4>;
+
+// Ray-triangle distance in double precision (Moller-Trumbore). Embree's float t carries a relative
+// error of a few 1e-7, i.e. millimetres at 2 km; the vertices it tested are exact floats, so
+// repeating the intersection in double recovers the range to well below a millimetre.
+std::optional<double> triangle_distance(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const Eigen::Vector3d e1 = b - a, e2 = c - a;
+    const Eigen::Vector3d p = d.cross(e2);
+    const double det = e1.dot(p);
+    if (std::abs(det) < 1e-300) return std::nullopt;
+    const Eigen::Vector3d s = o - a;
+    return e2.dot(s.cross(e1)) / det;
+}
+
+Matrix34 to_matrix(const float* column_major) {
+    Matrix34 m;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r) m(r, c) = column_major[3 * c + r];
+    return m;
+}
+
+}  // namespace
+
+struct TracedScene::Impl {
+    Eigen::Vector3d origin_world;
+    Device device;
+    EmbreeScene top;
+    std::vector<ModelBvh> models;
+    std::map<unsigned, TopGeometry> geometries;  // by Embree geometry id in the top scene
+    std::map<const scene::Model*, std::size_t> model_index;
+    const scene::BackgroundMap* background = nullptr;
+    double window_begin_s = 0.0;
+    double window_length_s = 0.0;
+
+    std::mutex error_mutex;
+    std::string last_error;
+
+    static void on_error(void* user, RTCError, const char* message) {
+        auto* self = static_cast<Impl*>(user);
+        const std::lock_guard lock(self->error_mutex);
+        self->last_error = message ? message : "unknown error";
+    }
+
+    // Embree reports through a callback from C code; we turn it into an exception here, on our side.
+    void check(const char* what) {
+        if (rtcGetDeviceError(device.get()) == RTC_ERROR_NONE) return;
+        const std::lock_guard lock(error_mutex);
+        throw std::runtime_error(std::string("Embree error while ") + what + ": " + last_error);
+    }
+
+    Impl(const scene::Scene& scene, const Eigen::Vector3d& origin) : origin_world(origin) {
+        device.reset(rtcNewDevice(nullptr));
+        if (!device) throw std::runtime_error("Embree: could not create a device (unsupported CPU?)");
+        rtcSetDeviceErrorFunction(device.get(), &Impl::on_error, this);
+        top.reset(rtcNewScene(device.get()));
+        // Dynamic: Embree then keeps one BVH per geometry and rebuilds only the instances that
+        // move with each new time window, not the static terrain or the background map.
+        rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
+        for (const scene::SceneObject& object : scene.objects) {
+            if (!object.model || object.model->mesh.triangles.empty()) continue;
+            if (object.trajectory.is_static()) add_static_mesh(object);
+            else add_moving_instance(object);
+        }
+        if (scene.background && !scene.background->points_world.empty()) add_discs(*scene.background);
+        check("building the scene");
+        set_time_window(0.0, 0.0, 2);
+    }
+
+    void attach(TopGeometry entry) {
+        rtcCommitGeometry(entry.geometry.get());
+        const unsigned id = rtcAttachGeometry(top.get(), entry.geometry.get());
+        geometries.emplace(id, std::move(entry));
+    }
+
+    // Fills an Embree triangle geometry from a mesh, vertices mapped by `transform`.
+    Geometry triangle_geometry(const scene::TriangleMesh& mesh, const Matrix34& transform, float** vertex_buffer) {
+        Geometry g(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), mesh.positions.size()));
+        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
+        check("allocating a triangle mesh");
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+            const Eigen::Vector3d p = transform * mesh.positions[i].cast<double>().homogeneous();
+            for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(p[k]);
+        }
+        for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+            for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+        if (vertex_buffer) *vertex_buffer = v;
+        return g;
+    }
+
+    // world - origin, as the affine map applied to model coordinates.
+    Matrix34 relative_from_model(const scene::SceneObject& object, double time_s) const {
+        Eigen::Isometry3d pose = object.trajectory.at(time_s).world_from_object();
+        pose.translation() -= origin_world;
+        Eigen::Affine3d m = pose * Eigen::Scaling(object.scale);
+        return m.matrix().topRows<3>();
+    }
+
+    void add_static_mesh(const scene::SceneObject& object) {
+        TopGeometry entry{GeometryKind::static_mesh, nullptr, &object, nullptr};
+        float* vertices = nullptr;
+        entry.geometry = triangle_geometry(object.model->mesh, relative_from_model(object, 0.0), &vertices);
+        entry.vertices = vertices;
+        attach(std::move(entry));
+    }
+
+    void add_moving_instance(const scene::SceneObject& object) {
+        auto [it, inserted] = model_index.emplace(object.model.get(), models.size());
+        if (inserted) {
+            EmbreeScene child(rtcNewScene(device.get()));
+            rtcSetSceneBuildQuality(child.get(), RTC_BUILD_QUALITY_HIGH);
+            Geometry g = triangle_geometry(object.model->mesh, Matrix34::Identity(), nullptr);
+            rtcCommitGeometry(g.get());
+            rtcAttachGeometry(child.get(), g.get());
+            rtcCommitScene(child.get());
+            check("building a model's BVH");
+            models.push_back(ModelBvh{std::move(child), object.model.get()});
+        }
+        Geometry instance(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE));
+        rtcSetGeometryInstancedScene(instance.get(), models[it->second].scene.get());
+        attach(TopGeometry{GeometryKind::moving_instance, std::move(instance), &object, nullptr});
+    }
+
+    void add_discs(const scene::BackgroundMap& map) {
+        background = &map;
+        const std::size_t n = map.points_world.size();
+        Geometry g(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT));
+        auto* v = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), n));
+        auto* nrm = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g.get(), RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
+        check("allocating the background discs");
+        for (std::size_t i = 0; i < n; ++i) {
+            const Eigen::Vector3d p = map.points_world[i] - origin_world;
+            for (int k = 0; k < 3; ++k) {
+                v[4 * i + k] = static_cast<float>(p[k]);
+                nrm[3 * i + k] = map.normals[i][k];
+            }
+            v[4 * i + 3] = map.radii_m[i];
+        }
+        attach(TopGeometry{GeometryKind::discs, std::move(g), nullptr, nullptr});
+    }
+
+    void set_time_window(double begin_s, double end_s, int motion_steps) {
+        if (!(end_s >= begin_s) || !std::isfinite(begin_s) || !std::isfinite(end_s))
+            throw std::invalid_argument("TracedScene: time window must be finite with end >= begin");
+        if (motion_steps < 2) throw std::invalid_argument("TracedScene: motion_steps must be at least 2");
+        window_begin_s = begin_s;
+        window_length_s = end_s - begin_s;
+        for (auto& [id, entry] : geometries) {
+            if (entry.kind != GeometryKind::moving_instance) continue;
+            RTCGeometry g = entry.geometry.get();
+            rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(motion_steps));
+            for (int step = 0; step < motion_steps; ++step) {
+                const double t = begin_s + window_length_s * step / (motion_steps - 1);
+                const Matrix34 m = relative_from_model(*entry.object, t);
+                float xfm[12];
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 3; ++r) xfm[3 * c + r] = static_cast<float>(m(r, c));
+                rtcSetGeometryTransform(g, static_cast<unsigned>(step), RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+            }
+            rtcCommitGeometry(g);
+        }
+        rtcCommitScene(top.get());
+        check("committing the scene");
+    }
+
+    float embree_time(double time_s) const {
+        if (window_length_s <= 0.0) return 0.0f;
+        return static_cast<float>(std::clamp((time_s - window_begin_s) / window_length_s, 0.0, 1.0));
+    }
+
+    RTCRayHit to_embree(const Ray& ray) const {
+        RTCRayHit rh{};
+        const Eigen::Vector3d o = ray.origin_world - origin_world;
+        rh.ray.org_x = static_cast<float>(o.x());
+        rh.ray.org_y = static_cast<float>(o.y());
+        rh.ray.org_z = static_cast<float>(o.z());
+        rh.ray.dir_x = static_cast<float>(ray.direction.x());
+        rh.ray.dir_y = static_cast<float>(ray.direction.y());
+        rh.ray.dir_z = static_cast<float>(ray.direction.z());
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = static_cast<float>(ray.max_range_m);
+        rh.ray.time = embree_time(ray.time_s);
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        return rh;
+    }
+
+    std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+        const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
+        const TopGeometry& entry = geometries.at(instanced ? rh.hit.instID[0] : rh.hit.geomID);
+        // The ray's origin in the relative frame, exactly (the float copy given to Embree is not).
+        const Eigen::Vector3d o = ray.origin_world - origin_world;
+        const Eigen::Vector3d& d = ray.direction;
+        const unsigned prim = rh.hit.primID;
+
+        Hit hit;
+        hit.range_m = rh.ray.tfar;
+        Eigen::Vector3d normal(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+        if (entry.kind == GeometryKind::discs) {
+            hit.object_id = scene::kBackgroundObjectId;
+            hit.object_class = scene::ObjectClass::background;
+            hit.material = 0;
+            hit.reflectance = background->reflectance[prim];
+            const Eigen::Vector3d n = background->normals[prim].cast<double>();
+            const double dn = d.dot(n);
+            if (std::abs(dn) > 1e-12) hit.range_m = (background->points_world[prim] - ray.origin_world).dot(n) / dn;
+            normal = n;
+        } else {
+            const scene::SceneObject& object = *entry.object;
+            const scene::Model& model = *object.model;
+            const auto& tri = model.mesh.triangles[prim];
+            hit.object_id = object.id;
+            hit.object_class = object.object_class;
+            hit.material = model.mesh.triangle_material[prim];
+            hit.reflectance = static_cast<float>(model.materials[hit.material].reflectance);
+            Eigen::Vector3d v[3];
+            if (entry.kind == GeometryKind::static_mesh) {
+                for (int k = 0; k < 3; ++k)
+                    v[k] = Eigen::Vector3d(entry.vertices[3 * tri[k]], entry.vertices[3 * tri[k] + 1], entry.vertices[3 * tri[k] + 2]);
+            } else {
+                // The instance's transform at this ray's time, as Embree interpolated it.
+                float xfm[12];
+                rtcGetGeometryTransform(entry.geometry.get(), rh.ray.time, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+                const Matrix34 m = to_matrix(xfm);
+                for (int k = 0; k < 3; ++k) v[k] = m * model.mesh.positions[tri[k]].cast<double>().homogeneous();
+            }
+            if (const auto t = triangle_distance(o, d, v[0], v[1], v[2])) hit.range_m = *t;
+            normal = (v[1] - v[0]).cross(v[2] - v[0]);
+        }
+        normal.normalize();
+        double cos_incidence = d.dot(normal);
+        if (cos_incidence > 0.0) normal = -normal;  // facing the ray
+        hit.normal_world = normal.cast<float>();
+        hit.cos_incidence = static_cast<float>(std::min(std::abs(cos_incidence), 1.0));
+        return hit;
+    }
+};
+
+TracedScene::TracedScene(const scene::Scene& scene, const Eigen::Vector3d& origin_world)
+    : impl_(std::make_unique<Impl>(scene, origin_world)) {}
+
+TracedScene::~TracedScene() = default;
+
+void TracedScene::set_time_window(double begin_s, double end_s, int motion_steps) {
+    impl_->set_time_window(begin_s, end_s, motion_steps);
+}
+
+std::optional<Hit> TracedScene::trace(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh = impl_->to_embree(ray);
+    rtcIntersect1(impl_->top.get(), &context, &rh);
+    return impl_->to_hit(ray, rh);
+}
+
+void TracedScene::trace(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const {
+    if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace: rays and results differ in size");
+    std::vector<RTCRayHit> rh(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) rh[i] = impl_->to_embree(rays[i]);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // The sub-rays of one beam leave one point in nearly one direction: a coherent stream.
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(impl_->top.get(), &context, rh.data(), static_cast<unsigned>(rh.size()), sizeof(RTCRayHit));
+    for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], rh[i]);
+}
+
+const Eigen::Vector3d& TracedScene::origin_world() const { return impl_->origin_world; }
+
+}  // namespace ladarsim::raytrace
