@@ -8,7 +8,7 @@
 #include <string>
 
 #include "ladarsim/sensor_model/atomic_file.h"
-#include "scratch_dir.h"
+#include "../support/scratch_dir.h"
 
 using ladarsim::sensor_model::AtomicFile;
 using ladarsim::test::ScratchDir;

@@ -19,7 +19,7 @@
 
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/sensor_model/exr_file.h"
-#include "scratch_dir.h"
+#include "../support/scratch_dir.h"
 
 using namespace ladarsim::sensor_model;
 using ladarsim::InputError;

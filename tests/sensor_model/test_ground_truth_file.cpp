@@ -14,7 +14,7 @@
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/sensor_model/ground_truth_file.h"
 #include "ladarsim/sensor_model/json_file.h"
-#include "scratch_dir.h"
+#include "../support/scratch_dir.h"
 
 using namespace ladarsim::sensor_model;
 using ladarsim::InputError;
