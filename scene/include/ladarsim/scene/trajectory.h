@@ -32,7 +32,8 @@ public:
     /// Never moves.
     static Trajectory fixed(const Pose& pose);
     /// Piecewise path through keyframes (sorted by time, at least one); clamps outside the range.
-    /// `smooth` is a centripetal Catmull-Rom spline on positions and slerp on orientations.
+    /// `smooth` is a uniform Catmull-Rom spline on positions (end keys repeated as the missing
+    /// neighbours) and slerp on orientations.
     static Trajectory keyframes(std::vector<Keyframe> keys, Interpolation interpolation);
     /// Constant velocity from `start` at time 0, nose along the velocity.
     static Trajectory straight(const Eigen::Vector3d& start, const Eigen::Vector3d& velocity_mps);
