@@ -1,0 +1,30 @@
+#pragma once
+// Models ladarsim builds from code, so the default scenario needs no downloaded assets. Reflectances
+// are 1550 nm estimates (docs/materials in ../shared/design/physics.md); scenarios override them.
+#include <filesystem>
+
+#include "ladarsim/scene/mesh.h"
+
+namespace ladarsim::scene {
+
+/// A 0.30 m quadcopter (rotor tip to rotor tip along x and y), centred on the origin, nose +x:
+/// a white plastic body and arms (0.6, like a consumer quadcopter's shell) with black plastic
+/// motors and rotor discs (0.06). Rotors are solid discs: a spinning rotor sweeps its disc
+/// many times during a beam's dwell.
+Model make_quadcopter();
+
+/// Rolling ground from x = -100 m to 3000 m and y = -600 m to 600 m on a 20 m grid, within 2 m
+/// of z = 0 except a ridge 80-150 m high between x = 2000 m and 2800 m (the backdrop behind a
+/// 2 km target). Grass and soil, 0.3.
+Model make_terrain();
+
+/// A closed box, base on z = 0 and centred on the origin in x and y; concrete, 0.35.
+Model make_box_building(double length_m, double width_m, double height_m);
+
+/// A trunk and a conical crown, base on z = 0: bark 0.25, foliage 0.3.
+Model make_tree(double height_m);
+
+/// Writes quadcopter.glb, terrain.glb, building.glb (20 x 12 x 15 m) and tree.glb (8 m) into `dir`.
+void write_default_assets(const std::filesystem::path& dir);
+
+}  // namespace ladarsim::scene

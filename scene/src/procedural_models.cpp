@@ -1,0 +1,181 @@
+#include "ladarsim/scene/procedural_models.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <system_error>
+
+#include "ladarsim/scene/gltf_writer.h"
+#include "ladarsim/scene/input_error.h"
+
+namespace ladarsim::scene {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Accumulates convex closed pieces into one model.
+class ModelBuilder {
+public:
+    explicit ModelBuilder(std::string source) { model_.source = std::move(source); }
+
+    std::uint32_t material(const std::string& name, double reflectance) {
+        model_.materials.push_back(Material{name, reflectance});
+        return static_cast<std::uint32_t>(model_.materials.size()) - 1;
+    }
+
+    /// A convex, closed piece: every triangle is turned to face away from the piece's centroid,
+    /// so callers list corners in any order.
+    void convex_piece(const std::vector<Eigen::Vector3d>& vertices,
+                      const std::vector<std::array<std::uint32_t, 3>>& triangles, std::uint32_t material) {
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        for (const auto& v : vertices) centroid += v;
+        centroid /= static_cast<double>(vertices.size());
+        const auto base = static_cast<std::uint32_t>(model_.mesh.positions.size());
+        for (const auto& v : vertices) model_.mesh.positions.push_back(v.cast<float>());
+        for (auto t : triangles) {
+            const Eigen::Vector3d &a = vertices[t[0]], &b = vertices[t[1]], &c = vertices[t[2]];
+            if ((b - a).cross(c - a).dot((a + b + c) / 3.0 - centroid) < 0.0) std::swap(t[1], t[2]);
+            model_.mesh.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+            model_.mesh.triangle_material.push_back(material);
+        }
+    }
+
+    /// A box of the given half extents, placed by `pose`.
+    void box(const Eigen::Affine3d& pose, const Eigen::Vector3d& half, std::uint32_t material) {
+        std::vector<Eigen::Vector3d> v;
+        for (int k = 0; k < 8; ++k)
+            v.push_back(pose * Eigen::Vector3d((k & 1 ? 1 : -1) * half.x(), (k & 2 ? 1 : -1) * half.y(), (k & 4 ? 1 : -1) * half.z()));
+        // Faces as corner quads: -x, +x, -y, +y, -z, +z.
+        const std::uint32_t quads[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+        std::vector<std::array<std::uint32_t, 3>> t;
+        for (const auto& q : quads) {
+            t.push_back({q[0], q[1], q[2]});
+            t.push_back({q[0], q[2], q[3]});
+        }
+        convex_piece(v, t, material);
+    }
+
+    /// A vertical frustum: radius r0 at z0, r1 at z0 + height (r1 = 0 makes a cone), about (x, y).
+    void frustum(double x, double y, double z0, double height, double r0, double r1, int segments, std::uint32_t material) {
+        std::vector<Eigen::Vector3d> v;
+        std::vector<std::array<std::uint32_t, 3>> t;
+        const auto n = static_cast<std::uint32_t>(segments);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const double a = 2.0 * kPi * i / n;
+            v.emplace_back(x + r0 * std::cos(a), y + r0 * std::sin(a), z0);
+        }
+        const std::uint32_t bottom_centre = n;
+        v.emplace_back(x, y, z0);
+        if (r1 > 0.0) {
+            for (std::uint32_t i = 0; i < n; ++i) {
+                const double a = 2.0 * kPi * i / n;
+                v.emplace_back(x + r1 * std::cos(a), y + r1 * std::sin(a), z0 + height);
+            }
+            v.emplace_back(x, y, z0 + height);
+            const std::uint32_t top = n + 1, top_centre = 2 * n + 1;
+            for (std::uint32_t i = 0; i < n; ++i) {
+                const std::uint32_t j = (i + 1) % n;
+                t.push_back({i, j, top + j});
+                t.push_back({i, top + j, top + i});
+                t.push_back({top_centre, top + i, top + j});
+            }
+        } else {
+            v.emplace_back(x, y, z0 + height);
+            const std::uint32_t apex = n + 1;
+            for (std::uint32_t i = 0; i < n; ++i) t.push_back({i, (i + 1) % n, apex});
+        }
+        for (std::uint32_t i = 0; i < n; ++i) t.push_back({bottom_centre, (i + 1) % n, i});
+        convex_piece(v, t, material);
+    }
+
+    Model take() { return std::move(model_); }
+    Model& model() { return model_; }
+
+private:
+    Model model_;
+};
+
+}  // namespace
+
+Model make_quadcopter() {
+    ModelBuilder b("procedural:quadcopter");
+    const std::uint32_t shell = b.material("white_plastic", 0.6);
+    const std::uint32_t black = b.material("black_plastic", 0.06);
+    const double rotor_radius = 0.06, arm_reach = 0.15 - rotor_radius;  // rotor tips at +-0.15 m
+    b.box(Eigen::Affine3d::Identity(), {0.05, 0.05, 0.025}, shell);
+    for (int k = 0; k < 4; ++k) {
+        const double angle = kPi / 4.0 + k * kPi / 2.0;
+        const double mx = arm_reach * std::sqrt(2.0) * std::cos(angle), my = arm_reach * std::sqrt(2.0) * std::sin(angle);
+        // Motor positions sit on the diagonals at (+-reach, +-reach); arms reach from the body to them.
+        const double length = std::hypot(mx, my);
+        Eigen::Affine3d arm = Eigen::Affine3d::Identity();
+        arm.rotate(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
+        arm.translate(Eigen::Vector3d(0.5 * length, 0.0, 0.0));
+        b.box(arm, {0.5 * length, 0.006, 0.005}, shell);
+        b.frustum(mx, my, 0.0, 0.03, 0.014, 0.014, 16, black);
+        b.frustum(mx, my, 0.03, 0.004, rotor_radius, rotor_radius, 24, black);
+    }
+    return b.take();
+}
+
+Model make_terrain() {
+    ModelBuilder b("procedural:terrain");
+    const std::uint32_t ground = b.material("grass_soil", 0.3);
+    const double x0 = -100.0, x1 = 3000.0, y0 = -600.0, y1 = 600.0, step = 20.0;
+    const int nx = static_cast<int>(std::lround((x1 - x0) / step)) + 1, ny = static_cast<int>(std::lround((y1 - y0) / step)) + 1;
+    auto height = [](double x, double y) {
+        double h = 1.0 * std::sin(2.0 * kPi * x / 370.0) * std::sin(2.0 * kPi * y / 290.0) +
+                   0.8 * std::sin(2.0 * kPi * (x + y) / 530.0);
+        if (x > 2000.0 && x < 2800.0) {
+            const double crest = 115.0 + 35.0 * std::sin(2.0 * kPi * y / 900.0);  // 80..150 m along the ridge
+            const double s = std::sin(kPi * (x - 2000.0) / 800.0);
+            h += crest * s * s;
+        }
+        return h;
+    };
+    Model& m = b.model();
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j) {
+            const double x = x0 + step * i, y = y0 + step * j;
+            m.mesh.positions.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(height(x, y)));
+        }
+    auto node = [ny](int i, int j) { return static_cast<std::uint32_t>(i * ny + j); };
+    for (int i = 0; i + 1 < nx; ++i)
+        for (int j = 0; j + 1 < ny; ++j) {
+            // Counter-clockwise seen from above: normals point up.
+            m.mesh.triangles.push_back({node(i, j), node(i + 1, j), node(i + 1, j + 1)});
+            m.mesh.triangles.push_back({node(i, j), node(i + 1, j + 1), node(i, j + 1)});
+            m.mesh.triangle_material.insert(m.mesh.triangle_material.end(), 2, ground);
+        }
+    return b.take();
+}
+
+Model make_box_building(double length_m, double width_m, double height_m) {
+    ModelBuilder b("procedural:building");
+    const std::uint32_t concrete = b.material("concrete", 0.35);
+    Eigen::Affine3d pose = Eigen::Affine3d::Identity();
+    pose.translate(Eigen::Vector3d(0.0, 0.0, 0.5 * height_m));
+    b.box(pose, {0.5 * length_m, 0.5 * width_m, 0.5 * height_m}, concrete);
+    return b.take();
+}
+
+Model make_tree(double height_m) {
+    ModelBuilder b("procedural:tree");
+    const std::uint32_t bark = b.material("bark", 0.25);
+    const std::uint32_t foliage = b.material("foliage", 0.3);
+    b.frustum(0.0, 0.0, 0.0, 0.35 * height_m, 0.02 * height_m, 0.015 * height_m, 12, bark);
+    b.frustum(0.0, 0.0, 0.3 * height_m, 0.7 * height_m, 0.3 * height_m, 0.0, 24, foliage);
+    return b.take();
+}
+
+void write_default_assets(const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InputError(dir.string(), "directory", ec.message());
+    write_gltf(make_quadcopter(), dir / "quadcopter.glb");
+    write_gltf(make_terrain(), dir / "terrain.glb");
+    write_gltf(make_box_building(20.0, 12.0, 15.0), dir / "building.glb");
+    write_gltf(make_tree(8.0), dir / "tree.glb");
+}
+
+}  // namespace ladarsim::scene
