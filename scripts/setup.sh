@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ladarsim needs, only those missing; quiet and idempotent.
+# Usage: setup.sh [--plots]   (--plots adds matplotlib for the preview and plot scripts)
 set -euo pipefail
 
 packages=(
@@ -7,6 +8,7 @@ packages=(
   libeigen3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libspdlog-dev libtbb-dev
   libopenexr-dev libcli11-dev librandom123-dev libpcl-dev catch2
 )
+[ "${1:-}" = "--plots" ] && packages+=(python3-matplotlib python3-numpy)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -66,7 +66,7 @@ struct TracedScene::Impl {
     Device device;
     EmbreeScene top;
     std::vector<ModelBvh> models;
-    std::map<unsigned, TopGeometry> geometries;  // by Embree geometry id in the top scene
+    std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene
     std::map<const scene::Model*, std::size_t> model_index;
     const scene::BackgroundMap* background = nullptr;
     double window_begin_s = 0.0;
@@ -108,8 +108,10 @@ struct TracedScene::Impl {
 
     void attach(TopGeometry entry) {
         rtcCommitGeometry(entry.geometry.get());
+        // Embree numbers the geometries of a fresh scene 0, 1, 2, ... in attachment order.
         const unsigned id = rtcAttachGeometry(top.get(), entry.geometry.get());
-        geometries.emplace(id, std::move(entry));
+        if (id != geometries.size()) throw std::logic_error("Embree geometry ids are not sequential");
+        geometries.push_back(std::move(entry));
     }
 
     // Fills an Embree triangle geometry from a mesh, vertices mapped by `transform`.
@@ -189,7 +191,7 @@ struct TracedScene::Impl {
         if (motion_steps < 2) throw std::invalid_argument("TracedScene: motion_steps must be at least 2");
         window_begin_s = begin_s;
         window_length_s = end_s - begin_s;
-        for (auto& [id, entry] : geometries) {
+        for (auto& entry : geometries) {
             if (entry.kind != GeometryKind::moving_instance) continue;
             RTCGeometry g = entry.geometry.get();
             rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(motion_steps));
@@ -212,8 +214,8 @@ struct TracedScene::Impl {
         return static_cast<float>(std::clamp((time_s - window_begin_s) / window_length_s, 0.0, 1.0));
     }
 
-    RTCRayHit to_embree(const Ray& ray) const {
-        RTCRayHit rh{};
+    void to_embree(const Ray& ray, RTCRayHit& rh) const {
+        rh = RTCRayHit{};
         const Eigen::Vector3d o = ray.origin_world - origin_world;
         rh.ray.org_x = static_cast<float>(o.x());
         rh.ray.org_y = static_cast<float>(o.y());
@@ -227,13 +229,12 @@ struct TracedScene::Impl {
         rh.ray.mask = 0xFFFFFFFFu;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        return rh;
     }
 
     std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
         const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
-        const TopGeometry& entry = geometries.at(instanced ? rh.hit.instID[0] : rh.hit.geomID);
+        const TopGeometry& entry = geometries[instanced ? rh.hit.instID[0] : rh.hit.geomID];
         // The ray's origin in the relative frame, exactly (the float copy given to Embree is not).
         const Eigen::Vector3d o = ray.origin_world - origin_world;
         const Eigen::Vector3d& d = ray.direction;
@@ -294,20 +295,25 @@ void TracedScene::set_time_window(double begin_s, double end_s, int motion_steps
 std::optional<Hit> TracedScene::trace(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh = impl_->to_embree(ray);
+    RTCRayHit rh;
+    impl_->to_embree(ray, rh);
     rtcIntersect1(impl_->top.get(), &context, &rh);
     return impl_->to_hit(ray, rh);
 }
 
 void TracedScene::trace(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const {
     if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace: rays and results differ in size");
-    std::vector<RTCRayHit> rh(rays.size());
-    for (std::size_t i = 0; i < rays.size(); ++i) rh[i] = impl_->to_embree(rays[i]);
+    // Reused per thread: a frame traces one small stream per beam, and allocating each time costs
+    // as much as tracing it.
+    thread_local std::vector<RTCRayHit> buffer;
+    buffer.resize(rays.size());
+    RTCRayHit* rh = buffer.data();
+    for (std::size_t i = 0; i < rays.size(); ++i) impl_->to_embree(rays[i], rh[i]);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     // The sub-rays of one beam leave one point in nearly one direction: a coherent stream.
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1M(impl_->top.get(), &context, rh.data(), static_cast<unsigned>(rh.size()), sizeof(RTCRayHit));
+    rtcIntersect1M(impl_->top.get(), &context, rh, static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
     for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], rh[i]);
 }
 

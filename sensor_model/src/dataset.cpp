@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "ladarsim/scene/input_error.h"
 #include "ladarsim/sensor_model/frame_io.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 
@@ -33,6 +34,30 @@ nlohmann::json render_json(const RenderSettings& r) {
             {"jitter", r.jitter}};
 }
 
+/// The output directory as an absolute path without a trailing separator, checked before any
+/// rendering: it may be absent, empty, or a previous ladarsim dataset (which is replaced), but
+/// never some other directory a user would lose.
+std::filesystem::path checked_out_dir(const std::filesystem::path& requested) {
+    std::filesystem::path out = std::filesystem::absolute(requested).lexically_normal();
+    if (!out.has_filename()) out = out.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::exists(out, ec)) return out;
+    if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string(), "--out", "exists and is not a directory");
+    if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / "manifest.json", ec))
+        throw InputError(out.string(), "--out",
+                         "is a non-empty directory without a ladarsim manifest.json; refusing to replace it");
+    return out;
+}
+
+/// Moves the finished staging directory to `out`, replacing a previous dataset there.
+void swap_in(const std::filesystem::path& staging, const std::filesystem::path& out) {
+    const std::filesystem::path old = out.string() + ".old";
+    std::filesystem::remove_all(old);
+    if (std::filesystem::exists(out)) std::filesystem::rename(out, old);
+    std::filesystem::rename(staging, out);
+    std::filesystem::remove_all(old);
+}
+
 }  // namespace
 
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) {
@@ -41,12 +66,17 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
     tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
 
-    const std::filesystem::path frames_dir = options.out_dir / "frames";
+    // Built beside the destination and swapped in when complete: an interrupted run leaves a
+    // previous dataset untouched, and a finished one never mixes with its stale frames.
+    const std::filesystem::path out = checked_out_dir(options.out_dir);
+    const std::filesystem::path staging = out.string() + ".partial";
+    std::filesystem::remove_all(staging);
+    const std::filesystem::path frames_dir = staging / "frames";
     std::filesystem::create_directories(frames_dir);
 
     FrameRenderer renderer(scenario);
     DatasetSummary summary;
-    summary.out_dir = options.out_dir;
+    summary.out_dir = out;
     std::vector<FrameGroundTruth> truth;
     nlohmann::json frame_log = nlohmann::json::array();
     using Clock = std::chrono::steady_clock;
@@ -79,7 +109,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
             ? double(renderer.raster().beam_count()) * summary.frames / summary.render_seconds
             : 0.0;
 
-    write_ground_truth_json(options.out_dir / "ground_truth.json", truth);
+    write_ground_truth_json(staging / "ground_truth.json", truth);
     const nlohmann::json manifest = {
         {"software", {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}},
         {"scenario_file", std::filesystem::absolute(scenario.file).string()},
@@ -95,7 +125,8 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
           {"render_s", summary.render_seconds},
           {"beams_per_s", summary.beams_per_second}}},
     };
-    write_json(options.out_dir / "manifest.json", manifest);
+    write_json(staging / "manifest.json", manifest);
+    swap_in(staging, out);
     return summary;
 }
 

@@ -27,7 +27,20 @@ struct SubRayHit {
     double weight;
     double signal;  ///< weight * reflectance * cos(incidence)
     std::uint32_t object_id;
+    Eigen::Vector3d point_world;
+    Eigen::Vector3f normal_world;
 };
+
+/// Two sub-ray hits (sorted by range) belong to one surface when their ranges are within the gap,
+/// or when they lie on one object's locally continuous surface: each within the gap of the other's
+/// tangent plane. Without the second rule a surface seen at grazing incidence, whose footprint
+/// spans metres in range, would break into one return per sub-ray.
+bool same_surface(const SubRayHit& a, const SubRayHit& b, double gap_m) {
+    if (b.range_m - a.range_m <= gap_m) return true;
+    if (a.object_id != b.object_id) return false;
+    const Eigen::Vector3d d = b.point_world - a.point_world;
+    return std::abs(a.normal_world.cast<double>().dot(d)) <= gap_m && std::abs(b.normal_world.cast<double>().dot(d)) <= gap_m;
+}
 
 }  // namespace
 
@@ -118,8 +131,8 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         for (int i = 0; i < samples; ++i) {
             if (!hits[i]) continue;
             const auto& h = *hits[i];
-            surface_hits.push_back({h.range_m, sub_rays[i].weight,
-                                    sub_rays[i].weight * h.reflectance * h.cos_incidence, h.object_id});
+            surface_hits.push_back({h.range_m, sub_rays[i].weight, sub_rays[i].weight * h.reflectance * h.cos_incidence,
+                                    h.object_id, rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
         }
         std::sort(surface_hits.begin(), surface_hits.end(),
                   [](const SubRayHit& a, const SubRayHit& b) { return a.range_m < b.range_m; });
@@ -129,8 +142,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         std::uint8_t return_index = 0;
         for (std::size_t first = 0; first < surface_hits.size();) {
             std::size_t last = first + 1;
-            while (last < surface_hits.size() &&
-                   surface_hits[last].range_m - surface_hits[last - 1].range_m <= sensor.return_gap_m) {
+            while (last < surface_hits.size() && same_surface(surface_hits[last - 1], surface_hits[last], sensor.return_gap_m)) {
                 ++last;
             }
             double weight = 0.0, weighted_range = 0.0, signal = 0.0;

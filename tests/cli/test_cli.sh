@@ -44,4 +44,16 @@ for f in "$work"/t1/frames/*; do
 done
 cmp -s "$work/t1/ground_truth.json" "$work/t2/ground_truth.json" || fail "ground truth differs between 1 and 2 threads"
 
+# Rendering again into a dataset replaces it whole: no stale frames from the longer run survive.
+"$bin" render "$good" --out "$work/t1" --frames 1 --quiet >/dev/null || fail "re-render into an existing dataset failed"
+[ "$(ls "$work/t1/frames" | wc -l)" -eq 2 ] || fail "stale frames left after re-rendering: $(ls "$work/t1/frames")"
+[ ! -e "$work/t1.partial" ] && [ ! -e "$work/t1.old" ] || fail "staging directories left behind"
+
+# A directory that is not a dataset is never replaced.
+mkdir -p "$work/precious" && echo keep >"$work/precious/notes.txt"
+"$bin" render "$good" --out "$work/precious" --quiet >/dev/null 2>"$work/stderr"
+[ $? -eq 2 ] || fail "rendering into a non-dataset directory did not exit 2"
+grep -q "refusing to replace" "$work/stderr" || fail "no clear message for a non-dataset directory: $(cat "$work/stderr")"
+[ "$(cat "$work/precious/notes.txt")" = keep ] || fail "a non-dataset directory was touched"
+
 if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else echo "cli: $failures failed"; exit 1; fi

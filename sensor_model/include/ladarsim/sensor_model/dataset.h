@@ -30,7 +30,9 @@ struct DatasetSummary {
 
 /// Renders every frame of a scenario and writes the dataset:
 ///   frames/NNNNNN.pcd, frames/NNNNNN.exr, ground_truth.json, manifest.json
-/// Each file is written under a temporary name and renamed when complete.
+/// Each file is written under a temporary name and renamed when complete, inside `<out_dir>.partial`,
+/// which replaces `out_dir` once every file is there. `out_dir` may be absent, empty or an earlier
+/// dataset; any other existing path is an InputError, checked before rendering starts.
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options);
 
 }  // namespace ladarsim::sensor_model
