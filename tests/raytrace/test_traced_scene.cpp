@@ -205,3 +205,16 @@ TEST_CASE("misses, range limits and streams", "[traced_scene]") {
     CHECK(hit_count == 40);  // |y| < 5 at y = -8.1 + 0.25 i: i = 13..52
     CHECK_THROWS(traced.set_time_window(1.0, 0.5, 2));
 }
+
+TEST_CASE("Embree's own errors arrive as exceptions carrying its message", "[traced_scene]") {
+    scene::Scene scene;
+    scene.objects.push_back(object_at(1, plate(1.0, 0.3), sliding({50.0, 0, 0}, {0, 1, 0})));
+    TracedScene traced(scene, Eigen::Vector3d::Zero());
+    // Embree accepts at most 129 time steps per geometry; it reports more through its callback.
+    try {
+        traced.set_time_window(0.0, 1.0, 1000);
+        FAIL("no exception for 1000 time steps");
+    } catch (const std::runtime_error& e) {
+        CHECK_THAT(e.what(), Catch::Matchers::Contains("Embree") && Catch::Matchers::Contains("invalid timestep"));
+    }
+}
