@@ -9,6 +9,7 @@
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sensor_config.h"
 
@@ -22,7 +23,9 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                 s.beams_per_second / scenario.sensor.beams_per_second());
     std::printf("returns: %llu in all\n", static_cast<unsigned long long>(s.returns));
     for (const auto& [id, count] : s.returns_by_object) {
-        std::string label = id == 0 ? "background map" : "object " + std::to_string(id);
+        std::string label = id == 0                       ? "background map"
+                            : id == sensor_model::kNoObject ? "false alarms (detector noise)"
+                                                            : "object " + std::to_string(id);
         for (const auto& o : scenario.scene.objects) {
             if (o.id == id) label += " (" + std::string(scene::to_string(o.object_class)) + (o.name.empty() ? "" : " " + o.name) + ")";
         }

@@ -1,5 +1,8 @@
 #include "ladarsim/sensor_model/counter_random.h"
 
+#include <cmath>
+#include <numbers>
+
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
 
@@ -15,6 +18,51 @@ std::array<double, 4> uniform4(std::uint64_t seed, RandomStream stream, std::uin
     const Philox::ctr_type bits = Philox{}(counter, key);
     return {r123::u01<double>(bits[0]), r123::u01<double>(bits[1]), r123::u01<double>(bits[2]),
             r123::u01<double>(bits[3])};
+}
+
+double RandomSequence::uniform() {
+    if (used_ == 4) {
+        buffer_ = uniform4(seed_, stream_, frame_, beam_, block_++);
+        used_ = 0;
+    }
+    return buffer_[static_cast<std::size_t>(used_++)];
+}
+
+double RandomSequence::normal() {
+    const double u1 = uniform(), u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
+double RandomSequence::gamma_unit_mean(double k) {
+    if (k < 1.0) {
+        // Boost to k + 1, then scale by U^(1/k) (Marsaglia and Tsang, section 6).
+        const double g = gamma_unit_mean(k + 1.0) * (k + 1.0);
+        return g * std::pow(uniform(), 1.0 / k) / k;
+    }
+    const double d = k - 1.0 / 3.0, c = 1.0 / std::sqrt(9.0 * d);
+    for (;;) {
+        double x, v;
+        do {
+            x = normal();
+            v = 1.0 + c * x;
+        } while (v <= 0.0);
+        v = v * v * v;
+        const double u = uniform();
+        if (u < 1.0 - 0.0331 * x * x * x * x || std::log(u) < 0.5 * x * x + d * (1.0 - v + std::log(v)))
+            return d * v / k;
+    }
+}
+
+int RandomSequence::poisson(double mean) {
+    const double u = uniform();
+    double p = std::exp(-mean), cumulative = p;
+    int n = 0;
+    while (u > cumulative && n < 10'000) {
+        ++n;
+        p *= mean / n;
+        cumulative += p;
+    }
+    return n;
 }
 
 }  // namespace ladarsim::sensor_model

@@ -1,12 +1,15 @@
 #include "ladarsim/sensor_model/frame_renderer.h"
 
 #include <algorithm>
+#include <map>
 #include <numbers>
 
 #include <tbb/parallel_for.h>
 
 #include "ladarsim/sensor_model/beam_geometry.h"
 #include "ladarsim/sensor_model/counter_random.h"
+#include "ladarsim/sensor_model/physical_constants.h"
+#include "ladarsim/sensor_model/range_equation.h"
 
 namespace ladarsim::sensor_model {
 
@@ -25,7 +28,7 @@ GimbalPointing initial_pointing(const SensorMount& mount, GimbalPointing cue, bo
 struct SubRayHit {
     double range_m;
     double weight;
-    double signal;  ///< weight * reflectance * cos(incidence)
+    double energy_j;  ///< reaching the detector, by the range equation
     std::uint32_t object_id;
     Eigen::Vector3d point_world;
     Eigen::Vector3f normal_world;
@@ -54,7 +57,8 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
       traced_(scenario.scene, scenario.mount.position_world),
       raster_(scenario.sensor),
       footprint_(scenario.sensor.divergence_mrad * kMradToRad, scenario.sensor.footprint_samples,
-                 scenario.sensor.footprint_truncation) {}
+                 scenario.sensor.footprint_truncation),
+      receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise) {}
 
 double FrameRenderer::frame_start_s(std::uint64_t index) const {
     return scenario_.render.start_time_s + static_cast<double>(index) / scenario_.sensor.frame_rate_hz;
@@ -99,6 +103,10 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
     std::vector<SubRayHit> surface_hits;
     surface_hits.reserve(static_cast<std::size_t>(samples));
     std::vector<Return> returns;
+    const double pulse_energy_j = sensor.pulse_energy_j();
+    const double aperture_area_m2 = sensor.aperture_area_m2();
+    // Primary photo-electrons per joule on the detector: responsivity / q.
+    const double photoelectrons_per_joule = sensor.responsivity_a_per_w / kElementaryCharge_c;
 
     for (int step = 0; step < raster_.columns(); ++step) {
         const int firing_index = row * raster_.columns() + step;
@@ -131,52 +139,58 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         for (int i = 0; i < samples; ++i) {
             if (!hits[i]) continue;
             const auto& h = *hits[i];
-            surface_hits.push_back({h.range_m, sub_rays[i].weight, sub_rays[i].weight * h.reflectance * h.cos_incidence,
-                                    h.object_id, rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
+            const double t = receiver_.transmission(h.range_m);
+            const double energy = lambertian_echo_energy_j(pulse_energy_j, sub_rays[i].weight, sensor.optics_efficiency,
+                                                           t * t, h.reflectance, h.cos_incidence, aperture_area_m2,
+                                                           h.range_m);
+            surface_hits.push_back({h.range_m, sub_rays[i].weight, energy, h.object_id,
+                                    rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
         }
         std::sort(surface_hits.begin(), surface_hits.end(),
                   [](const SubRayHit& a, const SubRayHit& b) { return a.range_m < b.range_m; });
 
-        const Eigen::Vector3d axis_sensor = sensor_from_beam_m.col(0);
-        const GimbalPointing beam_angles = pointing_towards(axis_sensor);
-        std::uint8_t return_index = 0;
+        // One BeamSurface per run of hits on one surface, named after the object carrying most
+        // of its energy.
+        std::vector<BeamSurface> surfaces;
         for (std::size_t first = 0; first < surface_hits.size();) {
             std::size_t last = first + 1;
             while (last < surface_hits.size() && same_surface(surface_hits[last - 1], surface_hits[last], sensor.return_gap_m)) {
                 ++last;
             }
-            double weight = 0.0, weighted_range = 0.0, signal = 0.0;
+            BeamSurface surface;
+            std::map<std::uint32_t, double> energy_by_object;
             for (std::size_t k = first; k < last; ++k) {
-                weight += surface_hits[k].weight;
-                weighted_range += surface_hits[k].weight * surface_hits[k].range_m;
-                signal += surface_hits[k].signal;
+                surface.weight += surface_hits[k].weight;
+                surface.echoes.push_back({surface_hits[k].range_m, surface_hits[k].energy_j, 0});
+                energy_by_object[surface_hits[k].object_id] += surface_hits[k].energy_j;
             }
-            // The object carrying most of this surface's energy names the return.
-            std::uint32_t object_id = surface_hits[first].object_id;
-            double best = 0.0;
-            for (std::size_t k = first; k < last; ++k) {
-                double on_object = 0.0;
-                for (std::size_t m = first; m < last; ++m) {
-                    if (surface_hits[m].object_id == surface_hits[k].object_id) on_object += surface_hits[m].weight;
-                }
-                if (on_object > best) {
-                    best = on_object;
-                    object_id = surface_hits[k].object_id;
-                }
-            }
+            surface.object_id = std::max_element(energy_by_object.begin(), energy_by_object.end(),
+                                                  [](const auto& a, const auto& b) { return a.second < b.second; })
+                                    ->first;
+            surfaces.push_back(std::move(surface));
+            first = last;
+        }
+
+        const Eigen::Vector3d axis_sensor = sensor_from_beam_m.col(0);
+        const GimbalPointing beam_angles = pointing_towards(axis_sensor);
+        const BeamKey key{scenario_.render.seed, frame, static_cast<std::uint32_t>(firing_index)};
+        std::uint8_t return_index = 0;
+        for (const DetectedReturn& d : receiver_.receive(std::move(surfaces), key)) {
             Return r;
-            r.range_m = weighted_range / weight;
+            r.range_m = d.range_m;
             r.position_sensor = (axis_sensor * r.range_m).cast<float>();
-            r.intensity = static_cast<float>(signal);
+            r.intensity = static_cast<float>(d.energy_j * photoelectrons_per_joule);
+            r.snr = static_cast<float>(d.snr);
             r.time_s = time_s;
             r.beam_az_rad = static_cast<float>(beam_angles.az_rad);
             r.beam_el_rad = static_cast<float>(beam_angles.el_rad);
             r.column = static_cast<std::uint16_t>(beam.column);
             r.row = static_cast<std::uint16_t>(beam.row);
             r.return_index = return_index++;
-            r.object_id = object_id;
+            r.object_id = d.object_id;
+            r.source = d.source;
+            r.pulse_offset = d.pulse_offset;
             returns.push_back(r);
-            first = last;
         }
     }
     // A triangle sweep fires odd lines right to left; frames list returns by column.
@@ -202,8 +216,11 @@ std::vector<GroundTruthObject> FrameRenderer::ground_truth(double time_s, const 
         g.box_sensor.centre = sensor_from_world * g.box_world.centre;
         g.box_sensor.size = g.box_world.size;
         g.box_sensor.orientation = (sensor_from_world_rotation * g.box_world.orientation).normalized();
-        g.returns = static_cast<std::uint32_t>(std::count_if(
-            returns.begin(), returns.end(), [&](const Return& r) { return r.object_id == object.id; }));
+        for (const Return& r : returns) {
+            if (r.object_id != object.id) continue;
+            ++g.returns;
+            if (r.pulse_offset > 0) ++g.folded_returns;
+        }
         truth.push_back(std::move(g));
     }
     return truth;

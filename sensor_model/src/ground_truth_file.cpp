@@ -25,8 +25,8 @@ nlohmann::json box_json(const OrientedBox& box) {
 
 nlohmann::json object_json(const GroundTruthObject& o) {
     return {{"id", o.object_id},       {"class", o.object_class},   {"name", o.name},
-            {"time_s", o.time_s},      {"returns", o.returns},      {"box_world", box_json(o.box_world)},
-            {"box_sensor", box_json(o.box_sensor)}};
+            {"time_s", o.time_s},      {"returns", o.returns},      {"folded_returns", o.folded_returns},
+            {"box_world", box_json(o.box_world)}, {"box_sensor", box_json(o.box_sensor)}};
 }
 
 std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
@@ -60,6 +60,7 @@ GroundTruthObject read_object(const nlohmann::json& json, const std::string& fil
     o.name = f.string("name");
     o.time_s = f.number("time_s", -kAnyNumber, kAnyNumber);
     o.returns = static_cast<std::uint32_t>(f.integer("returns", 0, kMaxUint32));
+    o.folded_returns = static_cast<std::uint32_t>(f.integer("folded_returns", 0, kMaxUint32, 0));
     o.box_world = read_box(f, "box_world");
     o.box_sensor = read_box(f, "box_sensor");
     f.reject_unknown_keys();

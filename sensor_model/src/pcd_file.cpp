@@ -54,7 +54,10 @@ void set_position(Return& r, double value) {
     r.position_sensor[Axis] = static_cast<float>(value);
 }
 
-constexpr std::array<ReturnField, 12> kReturnFields{{
+double get_source(const Return& r) { return static_cast<double>(static_cast<std::uint8_t>(r.source)); }
+void set_source(Return& r, double value) { r.source = static_cast<ReturnSource>(static_cast<std::uint8_t>(value)); }
+
+constexpr std::array<ReturnField, 15> kReturnFields{{
     {"x", 'F', 4, get_position<0>, set_position<0>},
     {"y", 'F', 4, get_position<1>, set_position<1>},
     {"z", 'F', 4, get_position<2>, set_position<2>},
@@ -67,6 +70,9 @@ constexpr std::array<ReturnField, 12> kReturnFields{{
     {"row", 'U', 2, get_member<&Return::row>, set_member<&Return::row>},
     {"return_index", 'U', 1, get_member<&Return::return_index>, set_member<&Return::return_index>},
     {"object_id", 'U', 4, get_member<&Return::object_id>, set_member<&Return::object_id>},
+    {"snr", 'F', 4, get_member<&Return::snr>, set_member<&Return::snr>},
+    {"source", 'U', 1, get_source, set_source},
+    {"pulse_offset", 'U', 1, get_member<&Return::pulse_offset>, set_member<&Return::pulse_offset>},
 }};
 
 constexpr std::size_t point_step_bytes() {

@@ -35,6 +35,7 @@ RenderSettings read_render(JsonFields& render) {
     r.start_time_s = render.number("start_time_s", -1e9, 1e9, r.start_time_s);
     r.motion_steps = static_cast<int>(render.integer("motion_steps", 2, 129, r.motion_steps));
     r.jitter = render.boolean("jitter", r.jitter);
+    r.noise = render.boolean("noise", r.noise);
     render.reject_unknown_keys();
     return r;
 }
@@ -57,6 +58,10 @@ Scenario load_scenario(const std::filesystem::path& file) {
     if (top.has("render")) {
         JsonFields render(top.object("render"), name, "render");
         s.render = read_render(render);
+    }
+    if (top.has("atmosphere")) {
+        JsonFields atmosphere(top.object("atmosphere"), name, "atmosphere");
+        s.atmosphere = read_atmosphere(atmosphere);
     }
     s.scene = scene::read_scene(top, file.parent_path());
     top.reject_unknown_keys();

@@ -1,17 +1,22 @@
 #include "ladarsim/sensor_model/sensor_config.h"
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include "ladarsim/scene/input_error.h"
+#include "ladarsim/sensor_model/physical_constants.h"
 
 namespace ladarsim::sensor_model {
 
+std::string to_string(GalvoSweep sweep) { return sweep == GalvoSweep::sawtooth ? "sawtooth" : "triangle"; }
+
 namespace {
-constexpr double kSpeedOfLight_mps = 299'792'458.0;
+const std::vector<std::string> kReportedReturnsNames = {"all", "first", "last", "strongest", "first_and_last"};
 }
 
-std::string to_string(GalvoSweep sweep) { return sweep == GalvoSweep::sawtooth ? "sawtooth" : "triangle"; }
+std::string to_string(ReportedReturns r) { return kReportedReturnsNames[static_cast<std::size_t>(r)]; }
 
 double SensorConfig::line_duration_s() const {
     return sweep == GalvoSweep::sawtooth ? 1.0 / galvo_rate_hz : 0.5 / galvo_rate_hz;
@@ -23,6 +28,14 @@ double SensorConfig::unambiguous_range_m() const { return kSpeedOfLight_mps / (2
 double SensorConfig::beam_pitch_az_mrad() const { return field_az_deg * std::numbers::pi / 180.0 / beams_az * 1e3; }
 double SensorConfig::beam_pitch_el_mrad() const { return field_el_deg * std::numbers::pi / 180.0 / beams_el * 1e3; }
 double SensorConfig::beams_per_second() const { return double(beams_az) * beams_el * frame_rate_hz; }
+double SensorConfig::pulse_energy_j() const {
+    return peak_power_w * pulse_width_ns * 1e-9 * std::sqrt(std::numbers::pi / (4.0 * std::numbers::ln2));
+}
+double SensorConfig::average_power_w() const { return pulse_energy_j() * pulse_rate_hz; }
+double SensorConfig::aperture_area_m2() const { return std::numbers::pi / 4.0 * aperture_diameter_m * aperture_diameter_m; }
+double SensorConfig::range_gate_s() const {
+    return range_folding ? 1.0 / pulse_rate_hz : 2.0 * max_range_m / kSpeedOfLight_mps;
+}
 
 void SensorConfig::validate(const std::string& file) const {
     auto fail = [&](const char* field, const std::string& problem) {
@@ -64,6 +77,25 @@ SensorConfig read_sensor_config(JsonFields& sensor) {
     c.footprint_samples = static_cast<int>(sensor.integer("footprint_samples", 1, 4096, c.footprint_samples));
     c.footprint_truncation = sensor.number("footprint_truncation", 0.1, 4.0, c.footprint_truncation);
     c.return_gap_m = sensor.number("return_gap_m", 0.0, 1e3, c.return_gap_m);
+    c.peak_power_w = sensor.number("peak_power_w", 1e-6, 1e12, c.peak_power_w);
+    c.pulse_width_ns = sensor.number("pulse_width_ns", 0.01, 1e6, c.pulse_width_ns);
+    c.range_folding = sensor.boolean("range_folding", c.range_folding);
+    c.aperture_diameter_m = sensor.number("aperture_diameter_m", 1e-4, 10.0, c.aperture_diameter_m);
+    c.optics_efficiency = sensor.number("optics_efficiency", 1e-6, 1.0, c.optics_efficiency);
+    c.receiver_fov_mrad = sensor.number("receiver_fov_mrad", 1e-3, 1e3, c.receiver_fov_mrad);
+    c.filter_width_nm = sensor.number("filter_width_nm", 1e-3, 1e3, c.filter_width_nm);
+    c.responsivity_a_per_w = sensor.number("responsivity_a_per_w", 1e-3, 10.0, c.responsivity_a_per_w);
+    c.apd_gain = sensor.number("apd_gain", 1.0, 1e4, c.apd_gain);
+    c.excess_noise_factor = sensor.number("excess_noise_factor", 1.0, 1e3, c.excess_noise_factor);
+    c.bandwidth_hz = sensor.number("bandwidth_hz", 1e3, 1e11, c.bandwidth_hz);
+    c.dark_current_a = sensor.number("dark_current_a", 0.0, 1e-3, c.dark_current_a);
+    c.load_resistance_ohm = sensor.number("load_resistance_ohm", 1e-3, 1e9, c.load_resistance_ohm);
+    c.temperature_k = sensor.number("temperature_k", 1.0, 1000.0, c.temperature_k);
+    c.saturation_current_a = sensor.number("saturation_current_a", 1e-9, 1e3, c.saturation_current_a);
+    c.false_alarm_rate_hz = sensor.number("false_alarm_rate_hz", 1e-9, 1e9, c.false_alarm_rate_hz);
+    const std::string reported = sensor.choice("reported_returns", kReportedReturnsNames, to_string(c.reported_returns));
+    c.reported_returns = static_cast<ReportedReturns>(
+        std::find(kReportedReturnsNames.begin(), kReportedReturnsNames.end(), reported) - kReportedReturnsNames.begin());
     c.validate(sensor.file());
     return c;
 }
@@ -89,6 +121,23 @@ nlohmann::json to_json(const SensorConfig& c) {
         {"footprint_samples", c.footprint_samples},
         {"footprint_truncation", c.footprint_truncation},
         {"return_gap_m", c.return_gap_m},
+        {"peak_power_w", c.peak_power_w},
+        {"pulse_width_ns", c.pulse_width_ns},
+        {"range_folding", c.range_folding},
+        {"aperture_diameter_m", c.aperture_diameter_m},
+        {"optics_efficiency", c.optics_efficiency},
+        {"receiver_fov_mrad", c.receiver_fov_mrad},
+        {"filter_width_nm", c.filter_width_nm},
+        {"responsivity_a_per_w", c.responsivity_a_per_w},
+        {"apd_gain", c.apd_gain},
+        {"excess_noise_factor", c.excess_noise_factor},
+        {"bandwidth_hz", c.bandwidth_hz},
+        {"dark_current_a", c.dark_current_a},
+        {"load_resistance_ohm", c.load_resistance_ohm},
+        {"temperature_k", c.temperature_k},
+        {"saturation_current_a", c.saturation_current_a},
+        {"false_alarm_rate_hz", c.false_alarm_rate_hz},
+        {"reported_returns", to_string(c.reported_returns)},
         {"derived",
          {{"line_duration_s", c.line_duration_s()},
           {"frame_scan_duration_s", c.frame_scan_duration_s()},
@@ -97,7 +146,10 @@ nlohmann::json to_json(const SensorConfig& c) {
           {"unambiguous_range_m", c.unambiguous_range_m()},
           {"beam_pitch_az_mrad", c.beam_pitch_az_mrad()},
           {"beam_pitch_el_mrad", c.beam_pitch_el_mrad()},
-          {"beams_per_second", c.beams_per_second()}}},
+          {"beams_per_second", c.beams_per_second()},
+          {"pulse_energy_j", c.pulse_energy_j()},
+          {"average_power_w", c.average_power_w()},
+          {"range_gate_s", c.range_gate_s()}}},
     };
 }
 

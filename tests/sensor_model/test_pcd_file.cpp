@@ -44,6 +44,7 @@ Frame sample_frame() {
     a.row = 1;
     a.return_index = 0;
     a.object_id = 7;
+    a.snr = 12.25f;
     Return b = a;
     b.position_sensor = {20.0f, -5.0f, 1.8f};
     b.range_m = 20.8;
@@ -60,6 +61,9 @@ Frame sample_frame() {
     c.row = 19;
     c.return_index = 255;
     c.object_id = 0xFFFFFFFFu;
+    c.snr = 5.5f;
+    c.source = ReturnSource::false_alarm;
+    c.pulse_offset = 255;
     frame.returns = {a, b, c};
     return frame;
 }
@@ -80,6 +84,9 @@ void check_identical(const Return& got, const Return& want) {
     CHECK(got.row == want.row);
     CHECK(got.return_index == want.return_index);
     CHECK(got.object_id == want.object_id);
+    CHECK(same_bits(got.snr, want.snr));
+    CHECK(got.source == want.source);
+    CHECK(got.pulse_offset == want.pulse_offset);
 }
 
 std::string contents(const std::filesystem::path& path) {
@@ -112,26 +119,28 @@ const std::string kHeaderStart = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F 
 
 }  // namespace
 
-TEST_CASE("the header is PCD v0.7 as specified and the data 49 packed bytes a point", "[pcd_file]") {
+TEST_CASE("the header is PCD v0.7 as specified and the data 55 packed bytes a point", "[pcd_file]") {
     const ScratchDir dir;
     write_frame_pcd(dir / "f.pcd", sample_frame());
     const std::string header =
         "# .PCD v0.7 - Point Cloud Data file format\n"
         "VERSION 0.7\n"
-        "FIELDS x y z intensity range_m time_s beam_az beam_el column row return_index object_id\n"
-        "SIZE 4 4 4 4 8 8 4 4 2 2 1 4\n"
-        "TYPE F F F F F F F F U U U U\n"
-        "COUNT 1 1 1 1 1 1 1 1 1 1 1 1\n"
+        "FIELDS x y z intensity range_m time_s beam_az beam_el column row return_index object_id snr source "
+        "pulse_offset\n"
+        "SIZE 4 4 4 4 8 8 4 4 2 2 1 4 4 1 1\n"
+        "TYPE F F F F F F F F U U U U F U U\n"
+        "COUNT 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1\n"
         "WIDTH 3\n"
         "HEIGHT 1\n"
         "VIEWPOINT 0 0 0 1 0 0 0\n"
         "POINTS 3\n"
         "DATA binary\n";
     const std::string bytes = contents(dir / "f.pcd");
-    REQUIRE(bytes.size() == header.size() + 3 * 49);
+    REQUIRE(bytes.size() == header.size() + 3 * 55);
     CHECK(bytes.substr(0, header.size()) == header);
-    // Point 2's object_id, the last four bytes, little-endian.
-    CHECK(bytes.substr(bytes.size() - 4) == std::string(4, '\xFF'));
+    // Point 2's object_id (bytes 45-48 of its 55, little-endian), then its source (2) and pulse offset (255).
+    CHECK(bytes.substr(bytes.size() - 10, 4) == std::string(4, '\xFF'));
+    CHECK(bytes.substr(bytes.size() - 2) == std::string("\x02\xFF"));
 }
 
 TEST_CASE("round trip: every field of every return comes back bit-identical", "[pcd_file]") {
@@ -152,7 +161,7 @@ TEST_CASE("PCL reads our file: width, field layout and values decoded by hand", 
     REQUIRE(pcl::io::loadPCDFile((dir / "f.pcd").string(), cloud) == 0);
     CHECK(cloud.width == 3);
     CHECK(cloud.height == 1);
-    CHECK(cloud.point_step == 49);
+    CHECK(cloud.point_step == 55);
 
     struct Expected {
         const char* name;
@@ -165,6 +174,7 @@ TEST_CASE("PCL reads our file: width, field layout and values decoded by hand", 
         {"intensity", F::FLOAT32, 12}, {"range_m", F::FLOAT64, 16}, {"time_s", F::FLOAT64, 24},
         {"beam_az", F::FLOAT32, 32}, {"beam_el", F::FLOAT32, 36}, {"column", F::UINT16, 40},
         {"row", F::UINT16, 42},      {"return_index", F::UINT8, 44}, {"object_id", F::UINT32, 45},
+        {"snr", F::FLOAT32, 49},     {"source", F::UINT8, 53},     {"pulse_offset", F::UINT8, 54},
     };
     REQUIRE(cloud.fields.size() == std::size(expected));
     for (std::size_t i = 0; i < std::size(expected); ++i) {
@@ -188,6 +198,9 @@ TEST_CASE("PCL reads our file: width, field layout and values decoded by hand", 
     CHECK(at<std::uint16_t>(cloud, 2, 40) == 65535);
     CHECK(at<std::uint8_t>(cloud, 2, 44) == 255);
     CHECK(at<std::uint32_t>(cloud, 2, 45) == 0xFFFFFFFFu);
+    CHECK(at<float>(cloud, 0, 49) == 12.25f);
+    CHECK(at<std::uint8_t>(cloud, 2, 53) == 2);
+    CHECK(at<std::uint8_t>(cloud, 2, 54) == 255);
 }
 
 TEST_CASE("an empty frame is a valid PCD with no points", "[pcd_file]") {
@@ -200,7 +213,7 @@ TEST_CASE("an empty frame is a valid PCD with no points", "[pcd_file]") {
     pcl::PCLPointCloud2 cloud;
     REQUIRE(pcl::io::loadPCDFile((dir / "empty.pcd").string(), cloud) == 0);
     CHECK(cloud.width == 0);
-    CHECK(cloud.fields.size() == 12);
+    CHECK(cloud.fields.size() == 15);
     CHECK(cloud.data.empty());
 }
 

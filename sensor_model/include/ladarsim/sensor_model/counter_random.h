@@ -7,10 +7,42 @@
 namespace ladarsim::sensor_model {
 
 /// Which physical process a draw belongs to, so that two processes never share a stream.
-enum class RandomStream : std::uint32_t { footprint_jitter = 1 };
+enum class RandomStream : std::uint32_t {
+    footprint_jitter = 1,
+    speckle = 2,
+    detector_noise = 3,   ///< noise on closed-form returns
+    waveform_noise = 4,   ///< noise samples of built waveforms
+    false_alarms = 5,
+    volume_scatter = 6,   ///< free paths inside fog and cloud
+};
 
 /// Four independent uniform numbers in (0, 1] for one (stream, frame, beam, sample).
 std::array<double, 4> uniform4(std::uint64_t seed, RandomStream stream, std::uint64_t frame,
                                std::uint32_t beam, std::uint32_t sample);
+
+/// Draws for one (stream, frame, beam), in order: the k-th draw is the same whatever else runs,
+/// on whichever thread. Each call of uniform4 yields four numbers; they are handed out one by one.
+class RandomSequence {
+public:
+    RandomSequence(std::uint64_t seed, RandomStream stream, std::uint64_t frame, std::uint32_t beam,
+                   std::uint32_t first_block = 0)
+        : seed_(seed), stream_(stream), frame_(frame), beam_(beam), block_(first_block) {}
+
+    double uniform();  ///< in (0, 1]
+    double normal();   ///< standard normal (Box-Muller)
+    /// Gamma distributed with shape k and mean 1 (Marsaglia and Tsang 2000): speckle of k cells.
+    double gamma_unit_mean(double k);
+    /// Poisson distributed with the given mean (inversion; for the small means of false alarms).
+    int poisson(double mean);
+
+private:
+    std::uint64_t seed_;
+    RandomStream stream_;
+    std::uint64_t frame_;
+    std::uint32_t beam_;
+    std::uint32_t block_;
+    std::array<double, 4> buffer_{};
+    int used_ = 4;
+};
 
 }  // namespace ladarsim::sensor_model

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "ladarsim/raytrace/traced_scene.h"
+#include "ladarsim/sensor_model/beam_receiver.h"
 #include "ladarsim/sensor_model/footprint.h"
 #include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
@@ -13,14 +14,9 @@
 namespace ladarsim::sensor_model {
 
 /// Turns a scenario into frames: fires every beam of the raster at its own time, traces its
-/// footprint's sub-rays, and reports one return per distinct surface along the beam.
-///
-/// Returns (geometric model; the received-signal model replaces the weighting later):
-/// sub-ray hits of a beam are sorted by range and split wherever consecutive ranges differ by
-/// more than return_gap_m; each group is one return, at the energy-weighted mean range along the
-/// beam axis, with intensity = sum of weight * reflectance * cos(incidence) over the group
-/// (1 for a white Lambertian wall filling the footprint face-on), and the object that carries
-/// most of the group's energy.
+/// footprint's sub-rays, gives each sub-ray its echo energy by the range equation, gathers the
+/// echoes into the distinct surfaces along the beam and hands them to the BeamReceiver, which
+/// reports what the detector sees (docs/physics.md).
 ///
 /// Frames are independent given the scenario and seed (the gimbal's pointing is replayed from
 /// frame 0), and beams are traced in parallel with results that do not depend on thread count.
@@ -44,6 +40,7 @@ private:
     raytrace::TracedScene traced_;
     GalvoRaster raster_;
     Footprint footprint_;
+    BeamReceiver receiver_;
     std::vector<GimbalPointing> pointing_by_frame_;
 };
 

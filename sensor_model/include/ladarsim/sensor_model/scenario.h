@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/scene/scene.h"
+#include "ladarsim/sensor_model/atmosphere.h"
 #include "ladarsim/sensor_model/sensor_config.h"
 
 namespace ladarsim::sensor_model {
@@ -33,6 +34,9 @@ struct RenderSettings {
     double start_time_s = 0.0;
     int motion_steps = 2;        ///< Embree time steps per moving object per frame
     bool jitter = true;          ///< jitter sub-rays within their footprint cells
+    /// Speckle, detector noise, timing jitter and false alarms. Off: every return is its noise-free
+    /// expectation, still subject to the detection threshold (for checking against closed forms).
+    bool noise = true;
 };
 
 /// Everything one run needs, read from a scenario file: the single source of truth of a dataset.
@@ -42,6 +46,7 @@ struct Scenario {
     SensorConfig sensor;
     SensorMount mount;
     RenderSettings render;
+    Atmosphere atmosphere;
     /// The file as read, for the manifest.
     nlohmann::json source;
 };

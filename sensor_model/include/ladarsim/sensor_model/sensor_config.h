@@ -1,6 +1,5 @@
 #pragma once
-// The sensor as data: scan geometry, timing, footprint and gimbal. Radiometric parameters
-// (power, aperture, detector) arrive with the sensor-physics issue.
+// The sensor as data: scan geometry, timing, footprint, gimbal, transmitter, receiver and detector.
 #include <string>
 #include <vector>
 
@@ -16,6 +15,11 @@ enum class GalvoSweep {
 };
 
 std::string to_string(GalvoSweep sweep);
+
+/// Which of a beam's detected returns the sensor reports.
+enum class ReportedReturns { all, first, last, strongest, first_and_last };
+
+std::string to_string(ReportedReturns r);
 
 struct SensorConfig {
     std::string preset = "paper_ladar";
@@ -40,6 +44,31 @@ struct SensorConfig {
     double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
     double return_gap_m = 0.15;          ///< surfaces closer than this along a beam merge (c * 1 ns / 2)
 
+    // Transmitter. The paper's 700 kW x 1 ns x 1 MHz is 700 W of average power; kept as given.
+    double peak_power_w = 700e3;
+    double pulse_width_ns = 1.0;         ///< full width at half maximum of a Gaussian pulse
+    /// Several pulses in the air at once: returns beyond c / (2 PRF) arrive in a later pulse's
+    /// range gate and are reported at their range modulo the unambiguous range.
+    bool range_folding = true;
+
+    // Receiver. The paper gives no aperture or optics; these are estimates for a 1560 nm
+    // InGaAs APD receiver, in the data so a scenario can override them.
+    double aperture_diameter_m = 0.05;
+    double optics_efficiency = 0.5;      ///< transmit x receive optics and filter transmission
+    double receiver_fov_mrad = 1.0;      ///< full angle seen by the detector (for solar background)
+    double filter_width_nm = 1.0;        ///< optical band-pass around the wavelength
+    double responsivity_a_per_w = 0.9;   ///< at unity gain
+    double apd_gain = 10.0;
+    double excess_noise_factor = 5.5;    ///< F at this gain
+    double bandwidth_hz = 500e6;
+    double dark_current_a = 5e-9;        ///< primary (multiplied) bulk dark current
+    double load_resistance_ohm = 5000.0; ///< transimpedance seen by the thermal noise
+    double temperature_k = 300.0;
+    double saturation_current_a = 2e-3;  ///< output current at which the receiver clips
+    /// Target rate of noise-only threshold crossings; it sets the detection threshold.
+    double false_alarm_rate_hz = 75.0;
+    ReportedReturns reported_returns = ReportedReturns::all;
+
     /// Throws InputError(file, "sensor.<field>", ...) for values no sensor can have.
     void validate(const std::string& file) const;
 
@@ -52,6 +81,12 @@ struct SensorConfig {
     double beam_pitch_az_mrad() const;
     double beam_pitch_el_mrad() const;
     double beams_per_second() const;       ///< beams per frame * frame rate
+    double pulse_energy_j() const;         ///< peak power x FWHM x sqrt(pi / (4 ln 2)) (Gaussian)
+    double average_power_w() const;        ///< pulse energy x pulse rate
+    double aperture_area_m2() const;
+    /// Time a beam's receiver listens for one pulse: one pulse period when ranges fold, else
+    /// the time of flight to max_range_m.
+    double range_gate_s() const;
 };
 
 /// Names of the built-in presets.

@@ -1,0 +1,60 @@
+#pragma once
+// The received waveform of a beam that meets more than one surface: every sub-ray echo adds the
+// pulse shape at its time of flight on a fine time grid, band-limited detector noise is added,
+// and peaks are found the way the sensor's discriminator would.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "ladarsim/sensor_model/apd_receiver.h"
+#include "ladarsim/sensor_model/counter_random.h"
+
+namespace ladarsim::sensor_model {
+
+/// One sub-ray's echo as the receiver times it.
+struct Echo {
+    double range_m;          ///< as the receiver's clock sees it (folded when ranges fold)
+    double energy_j;         ///< optical energy reaching the detector
+    std::uint32_t surface;   ///< which surface of the beam it came from
+};
+
+inline constexpr std::uint32_t kNoSurface = 0xFFFFFFFFu;
+
+/// A peak the discriminator reported.
+struct DetectedPulse {
+    double range_m;          ///< centre of the pulse, from its 50 % leading-edge crossing
+    double peak_a;           ///< measured peak current (noise included, clipped at saturation)
+    double snr;              ///< noise-free signal current at the peak over the noise there
+    bool saturated;
+    std::uint32_t surface;   ///< the surface contributing most signal at the peak; kNoSurface for noise
+};
+
+class WaveformReceiver {
+public:
+    /// `bin_s`: the time grid (0.125 ns by default, 1.9 cm of range).
+    WaveformReceiver(const ApdReceiver& apd, double pulse_fwhm_s, double bin_s = 0.125e-9);
+
+    /// Detects the pulses in the waveform the echoes make. Echoes more than a few pulse widths
+    /// apart get separate windows (the receiver's noise elsewhere is the false-alarm process).
+    /// `noise` null: the noise-free waveform.
+    std::vector<DetectedPulse> detect(std::span<const Echo> echoes, RandomSequence* noise) const;
+
+    /// `n` samples of zero-mean, unit-variance Gaussian noise band-limited to the receiver's
+    /// bandwidth (white samples through a windowed-sinc low-pass filter).
+    std::vector<double> band_limited_noise(std::size_t n, RandomSequence& rng) const;
+
+    double bin_s() const { return bin_s_; }
+    const PulseShape& pulse() const { return pulse_; }
+
+private:
+    void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
+                       std::vector<DetectedPulse>& out) const;
+
+    const ApdReceiver& apd_;
+    PulseShape pulse_;
+    double fwhm_s_;
+    double bin_s_;
+    std::vector<double> taps_;
+};
+
+}  // namespace ladarsim::sensor_model

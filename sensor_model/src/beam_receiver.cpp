@@ -1,0 +1,161 @@
+#include "ladarsim/sensor_model/beam_receiver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ladarsim/sensor_model/physical_constants.h"
+#include "ladarsim/sensor_model/range_equation.h"
+
+namespace ladarsim::sensor_model {
+namespace {
+
+/// Energy-weighted mean and standard deviation of a surface's echo ranges.
+std::pair<double, double> range_moments(const std::vector<Echo>& echoes) {
+    double energy = 0.0, mean = 0.0;
+    for (const Echo& e : echoes) {
+        energy += e.energy_j;
+        mean += e.energy_j * e.range_m;
+    }
+    if (!(energy > 0.0)) return {echoes.front().range_m, 0.0};
+    mean /= energy;
+    double variance = 0.0;
+    for (const Echo& e : echoes) variance += e.energy_j * (e.range_m - mean) * (e.range_m - mean);
+    return {mean, std::sqrt(variance / energy)};
+}
+
+double total_energy(const std::vector<Echo>& echoes) {
+    double e = 0.0;
+    for (const Echo& echo : echoes) e += echo.energy_j;
+    return e;
+}
+
+}  // namespace
+
+BeamReceiver::BeamReceiver(const SensorConfig& sensor, const Atmosphere& atmosphere, bool noise)
+    : sensor_(sensor),
+      noise_(noise),
+      extinction_per_m_(atmosphere.extinction_per_m(sensor.wavelength_nm)),
+      apd_(sensor, solar_background_power_w(sensor, atmosphere)),
+      waveform_(apd_, sensor.pulse_width_ns * 1e-9),
+      unambiguous_range_m_(sensor.unambiguous_range_m()) {}
+
+double BeamReceiver::transmission(double range_m) const { return std::exp(-extinction_per_m_ * range_m); }
+
+void BeamReceiver::fold(DetectedReturn& r) const {
+    if (!sensor_.range_folding) return;
+    const double periods = std::max(0.0, std::floor(r.range_m / unambiguous_range_m_));
+    r.pulse_offset = static_cast<std::uint8_t>(std::min(periods, 255.0));
+    r.range_m -= periods * unambiguous_range_m_;
+}
+
+DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSequence& noise) const {
+    const auto [range, spread] = range_moments(surface.echoes);
+    const double energy = total_energy(surface.echoes);
+    // The echoes of one surface add up to one pulse, stretched by their spread in arrival time.
+    const PulseShape shape = PulseShape::of(sensor_.pulse_width_ns * 1e-9, 2.0 * spread / kSpeedOfLight_mps);
+    const double power = energy * shape.peak_per_joule();
+    const double signal = apd_.amps_per_watt() * power;
+    const double sigma = apd_.noise_a(power);
+    const double measured = std::min(signal + (noise_ ? sigma * noise.normal() : 0.0), apd_.saturation_a());
+    DetectedReturn r{};
+    r.snr = signal / sigma;
+    r.saturated = measured >= apd_.saturation_a();
+    r.object_id = surface.object_id;
+    r.source = surface.source;
+    // Below the threshold the return is lost; energy_j < 0 marks it for the caller to drop.
+    r.energy_j = measured > apd_.threshold_a() ? measured / (apd_.amps_per_watt() * shape.peak_per_joule()) : -1.0;
+    r.range_m = range + (noise_ ? ApdReceiver::range_jitter_m(shape.rise_time_s(), r.snr) * noise.normal() : 0.0);
+    fold(r);
+    return r;
+}
+
+void BeamReceiver::add_false_alarms(std::vector<DetectedReturn>& returns, const BeamKey& key) const {
+    RandomSequence draws(key.seed, RandomStream::false_alarms, key.frame, key.beam);
+    const double gate_s = sensor_.range_gate_s();
+    const int count = draws.poisson(apd_.false_alarm_rate_hz() * gate_s);
+    const double tnr = apd_.threshold_to_noise();
+    for (int i = 0; i < count; ++i) {
+        DetectedReturn r{};
+        r.range_m = 0.5 * kSpeedOfLight_mps * gate_s * draws.uniform();
+        // Gaussian noise that has crossed the threshold exceeds it by about an exponential
+        // amount of mean sigma / TNR.
+        const double excess = -std::log(draws.uniform()) / tnr;
+        r.snr = tnr + excess;
+        r.energy_j = r.snr * apd_.noise_floor_a() / (apd_.amps_per_watt() * waveform_.pulse().peak_per_joule());
+        r.object_id = kNoObject;
+        r.source = ReturnSource::false_alarm;
+        returns.push_back(r);
+    }
+}
+
+std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfaces, const BeamKey& key) const {
+    // Speckle: each surface's energy fluctuates as Gamma(M), M the speckle cells the aperture
+    // averages for the illuminated spot (the part of the footprint on that surface).
+    RandomSequence speckle(key.seed, RandomStream::speckle, key.frame, key.beam);
+    for (std::uint32_t i = 0; i < surfaces.size(); ++i) {
+        BeamSurface& s = surfaces[i];
+        for (Echo& e : s.echoes) e.surface = i;
+        if (!noise_ || s.source != ReturnSource::surface || s.echoes.empty()) continue;
+        const double range = range_moments(s.echoes).first;
+        const double spot = range * sensor_.divergence_mrad * 1e-3 * std::sqrt(std::max(s.weight, 1e-12));
+        const double factor = speckle.gamma_unit_mean(
+            speckle_cells(sensor_.wavelength_nm * 1e-9, range, spot, sensor_.aperture_diameter_m));
+        for (Echo& e : s.echoes) e.energy_j *= factor;
+    }
+    std::erase_if(surfaces, [](const BeamSurface& s) { return s.echoes.empty(); });
+
+    std::vector<DetectedReturn> returns;
+    RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);
+    if (surfaces.size() == 1) {
+        const DetectedReturn r = closed_form(surfaces.front(), noise);
+        if (r.energy_j >= 0.0) returns.push_back(r);
+    } else if (surfaces.size() > 1) {
+        std::vector<Echo> echoes;
+        for (const BeamSurface& s : surfaces)
+            for (Echo e : s.echoes) {
+                if (sensor_.range_folding) e.range_m = std::fmod(e.range_m, unambiguous_range_m_);
+                echoes.push_back(e);
+            }
+        RandomSequence waveform_noise(key.seed, RandomStream::waveform_noise, key.frame, key.beam);
+        for (const DetectedPulse& p : waveform_.detect(echoes, noise_ ? &waveform_noise : nullptr)) {
+            DetectedReturn r{};
+            r.range_m = p.range_m;
+            r.energy_j = p.peak_a / (apd_.amps_per_watt() * waveform_.pulse().peak_per_joule());
+            r.snr = p.snr;
+            r.saturated = p.saturated;
+            if (p.surface == kNoSurface) {
+                r.object_id = kNoObject;
+                r.source = ReturnSource::false_alarm;
+            } else {
+                const BeamSurface& s = surfaces[p.surface];
+                r.object_id = s.object_id;
+                r.source = s.source;
+                const double true_range = range_moments(s.echoes).first;
+                if (sensor_.range_folding)
+                    r.pulse_offset = static_cast<std::uint8_t>(std::min(std::floor(true_range / unambiguous_range_m_), 255.0));
+            }
+            returns.push_back(r);
+        }
+    }
+    if (noise_) add_false_alarms(returns, key);
+    std::sort(returns.begin(), returns.end(),
+              [](const DetectedReturn& a, const DetectedReturn& b) { return a.range_m < b.range_m; });
+
+    if (returns.size() > 1) {
+        switch (sensor_.reported_returns) {
+            case ReportedReturns::all: break;
+            case ReportedReturns::first: returns.resize(1); break;
+            case ReportedReturns::last: returns.erase(returns.begin(), returns.end() - 1); break;
+            case ReportedReturns::strongest: {
+                const auto strongest = std::max_element(returns.begin(), returns.end(),
+                    [](const DetectedReturn& a, const DetectedReturn& b) { return a.energy_j < b.energy_j; });
+                returns = {*strongest};
+                break;
+            }
+            case ReportedReturns::first_and_last: returns = {returns.front(), returns.back()}; break;
+        }
+    }
+    return returns;
+}
+
+}  // namespace ladarsim::sensor_model
