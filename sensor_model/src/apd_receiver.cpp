@@ -58,6 +58,16 @@ double ApdReceiver::noise_a(double signal_power_w) const {
     return std::sqrt(2.0 * kElementaryCharge_c * bandwidth_ * gain_ * gain_ * excess_noise_ * primary + thermal_variance_);
 }
 
-double ApdReceiver::range_jitter_m(double rise_time_s, double snr) { return 0.5 * kSpeedOfLight_mps * rise_time_s / snr; }
+double ApdReceiver::range_jitter_m(double peak_power_w, const PulseShape& pulse) const {
+    const double amplitude = amps_per_watt() * peak_power_w;
+    if (!(amplitude > 0.0)) return 0.0;
+    const double half_width = pulse.sigma_s * std::sqrt(2.0 * std::numbers::ln2);
+    const double slope = 0.5 * amplitude * half_width / (pulse.sigma_s * pulse.sigma_s);
+    const double x = 2.0 * std::numbers::pi * bandwidth_ * half_width;
+    const double rho = std::sin(x) / x;
+    const double s_c = noise_a(0.5 * peak_power_w), s_p = noise_a(peak_power_w);
+    const double variance = s_c * s_c + 0.25 * s_p * s_p - rho * s_c * s_p;
+    return 0.5 * kSpeedOfLight_mps * std::sqrt(std::max(variance, 0.0)) / slope;
+}
 
 }  // namespace ladarsim::sensor_model

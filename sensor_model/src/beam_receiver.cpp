@@ -64,7 +64,7 @@ DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSeque
     r.source = surface.source;
     // Below the threshold the return is lost; energy_j < 0 marks it for the caller to drop.
     r.energy_j = measured > apd_.threshold_a() ? measured / (apd_.amps_per_watt() * shape.peak_per_joule()) : -1.0;
-    r.range_m = range + (noise_ ? ApdReceiver::range_jitter_m(shape.rise_time_s(), r.snr) * noise.normal() : 0.0);
+    r.range_m = range + (noise_ ? apd_.range_jitter_m(power, shape) * noise.normal() : 0.0);
     fold(r);
     return r;
 }

@@ -20,6 +20,21 @@ inline std::shared_ptr<const scene::Model> plate(double side_m, double reflectan
     return m;
 }
 
+/// A regular `segments`-gon of circumradius `radius_m` in the model's y-z plane, facing +-x.
+inline std::shared_ptr<const scene::Model> disc(double radius_m, int segments, double reflectance) {
+    auto m = std::make_shared<scene::Model>();
+    m->mesh.positions.push_back(Eigen::Vector3f::Zero());
+    for (int i = 0; i < segments; ++i) {
+        const double a = 2.0 * M_PI * i / segments;
+        m->mesh.positions.emplace_back(0.0f, static_cast<float>(radius_m * std::cos(a)), static_cast<float>(radius_m * std::sin(a)));
+    }
+    for (int i = 0; i < segments; ++i)
+        m->mesh.triangles.push_back({0u, static_cast<std::uint32_t>(1 + i), static_cast<std::uint32_t>(1 + (i + 1) % segments)});
+    m->mesh.triangle_material.assign(static_cast<std::size_t>(segments), 0);
+    m->materials = {scene::Material{"disc", reflectance}};
+    return m;
+}
+
 /// A sphere of `radius_m` about the origin: an icosahedron subdivided `levels` times, every vertex
 /// on the sphere. The flat facets lie inside it by at most radius * (1 - cos(theta)), theta the
 /// largest angle between a vertex and its facet's centroid (see max_facet_sag).

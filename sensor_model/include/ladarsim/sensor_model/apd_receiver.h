@@ -43,9 +43,14 @@ public:
     double saturation_a() const { return saturation_; }
     double background_power_w() const { return background_; }
     double bandwidth_hz() const { return bandwidth_; }
-    /// Range standard deviation of a return with amplitude signal-to-noise ratio `snr` timed on a
-    /// pulse of rise time `rise_time_s`: (c / 2) * t_rise / SNR.
-    static double range_jitter_m(double rise_time_s, double snr);
+    /// Range standard deviation of a pulse of peak optical power `peak_power_w` timed by the
+    /// discriminator (the 50 % crossing of its measured peak, see WaveformReceiver). To first
+    /// order the crossing moves by (n_c - n_p / 2) / slope, n_c and n_p the noise at the crossing
+    /// and at the peak, a time d = sigma sqrt(2 ln 2) apart, where the slope is A sqrt(2 ln 2) / (2 sigma):
+    ///   sigma_t = sqrt(s_c^2 + s_p^2 / 4 - rho s_c s_p) / slope,   rho = sinc(2 B d),
+    /// s_c and s_p the noise there (shot noise follows the signal) and rho the correlation of noise
+    /// band-limited to B. It is 0.5-0.8 x the textbook (c/2) t_rise / SNR, which ignores both.
+    double range_jitter_m(double peak_power_w, const PulseShape& pulse) const;
 
 private:
     double gain_, responsivity_, excess_noise_, bandwidth_, dark_current_, thermal_variance_;

@@ -9,14 +9,18 @@
 namespace ladarsim::sensor_model {
 
 /// Energy reaching the detector from one sub-ray (J):
-///   E = E_pulse * w * eta * T^2 * (rho / pi) * cos(theta) * A_r / R^2,
+///   E = E_pulse * w * eta * T^2 * rho * cos(theta) * r_a^2 / (R^2 + r_a^2),
 /// w the sub-ray's share of the pulse energy, eta the optics efficiency, T the one-way
-/// transmission, rho the diffuse reflectance, theta the incidence angle, A_r the aperture area.
+/// transmission, rho the diffuse reflectance, theta the incidence angle, r_a the aperture radius.
+/// The last factor is the view factor from a small Lambertian patch to a coaxial disc: it is the
+/// familiar A_r / (pi R^2) once R >> r_a, and stays below 1 as R -> 0, so no return can carry
+/// more energy than the pulse.
 inline double lambertian_echo_energy_j(double pulse_energy_j, double weight, double optics_efficiency,
                                        double two_way_transmission, double reflectance, double cos_incidence,
                                        double aperture_area_m2, double range_m) {
-    return pulse_energy_j * weight * optics_efficiency * two_way_transmission * reflectance / std::numbers::pi *
-           cos_incidence * aperture_area_m2 / (range_m * range_m);
+    const double r2 = aperture_area_m2 / std::numbers::pi;
+    return pulse_energy_j * weight * optics_efficiency * two_way_transmission * reflectance * cos_incidence * r2 /
+           (range_m * range_m + r2);
 }
 
 /// Number of speckle cells averaged by the aperture, M = 1 + (D_r * D_spot / (lambda R))^2: the
