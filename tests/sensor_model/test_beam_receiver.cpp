@@ -1,0 +1,155 @@
+// BeamReceiver: false alarms, detection probability, folding, saturation, hard cases.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "ladarsim/sensor_model/beam_receiver.h"
+#include "ladarsim/sensor_model/physical_constants.h"
+
+using namespace ladarsim::sensor_model;
+
+namespace {
+
+Atmosphere vacuum() {
+    Atmosphere a;
+    a.visibility_m = std::numeric_limits<double>::infinity();
+    return a;
+}
+
+BeamSurface one_surface(double range_m, double energy_j, std::uint32_t object_id = 1) {
+    BeamSurface s;
+    s.object_id = object_id;
+    s.weight = 1.0;
+    s.echoes = {{range_m, energy_j, 0}};
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("false alarms over 1e6 range gates match the Rice rate", "[beam_receiver]") {
+    SensorConfig c;
+    c.range_folding = false;
+    c.max_range_m = 2000.0;  // a 13.3 us gate
+    const BeamReceiver receiver(c, vacuum());
+    const int gates = 1'000'000;
+    long long alarms = 0;
+    for (int g = 0; g < gates; ++g) {
+        const auto returns = receiver.receive({}, BeamKey{3, static_cast<std::uint64_t>(g / 3000), static_cast<std::uint32_t>(g % 3000)});
+        for (const auto& r : returns) {
+            REQUIRE(r.source == ReturnSource::false_alarm);
+            REQUIRE(r.object_id == kNoObject);
+            REQUIRE(r.range_m >= 0.0);
+            REQUIRE(r.range_m <= 2000.0);
+        }
+        alarms += static_cast<long long>(returns.size());
+    }
+    // Rice: B / sqrt(3) exp(-TNR^2 / 2) with the threshold set for 75 /s: 1.0e-3 per gate.
+    const double gate_s = 2.0 * 2000.0 / kSpeedOfLight_mps;
+    const double expected = gates * rice_false_alarm_rate_hz(receiver.apd().threshold_to_noise(), c.bandwidth_hz) * gate_s;
+    CHECK(expected == Approx(1000.6).epsilon(0.01));
+    CHECK(static_cast<double>(alarms) == Approx(expected).epsilon(0.10));
+}
+
+TEST_CASE("detection probability of a return follows the Gaussian noise at its peak", "[beam_receiver]") {
+    SensorConfig c;
+    c.range_folding = false;
+    c.false_alarm_rate_hz = 1e-9;  // count only the surface
+    const BeamReceiver receiver(c, vacuum());
+    const ApdReceiver& apd = receiver.apd();
+    const PulseShape pulse = receiver.waveform().pulse();
+    // A signal at the threshold plus one noise sigma (the noise with that signal): Pd = Phi(1) = 0.841.
+    const double target_power = [&] {
+        double p = apd.threshold_a() / apd.amps_per_watt();
+        for (int i = 0; i < 100; ++i) p = (apd.threshold_a() + apd.noise_a(p)) / apd.amps_per_watt();
+        return p;
+    }();
+    const double energy = target_power / pulse.peak_per_joule();
+    int detected = 0;
+    const int beams = 20000;
+    for (int b = 0; b < beams; ++b) {
+        BeamSurface s = one_surface(1000.0, energy);
+        s.source = ReturnSource::volume;  // no speckle: the test is about the detector alone
+        detected += static_cast<int>(receiver.receive({s}, BeamKey{5, 0, static_cast<std::uint32_t>(b)}).size());
+    }
+    CHECK(detected / double(beams) == Approx(0.8413).margin(0.01));
+}
+
+TEST_CASE("range folding: returns beyond c / (2 PRF) arrive in a later pulse's gate", "[beam_receiver]") {
+    SensorConfig c;  // the paper's 1 MHz: 149.9 m unambiguous range
+    const BeamReceiver folding(c, vacuum(), false);
+    c.range_folding = false;
+    const BeamReceiver coded(c, vacuum(), false);
+    const double energy = 1e-14;
+    const auto folded = folding.receive({one_surface(600.0, energy)}, BeamKey{1, 0, 0});
+    const auto plain = coded.receive({one_surface(600.0, energy)}, BeamKey{1, 0, 0});
+    REQUIRE(folded.size() == 1);
+    REQUIRE(plain.size() == 1);
+    const double ambiguity = kSpeedOfLight_mps / 2e6;
+    CHECK(folded[0].pulse_offset == 4);
+    CHECK(folded[0].range_m == Approx(600.0 - 4 * ambiguity).margin(1e-9));
+    CHECK(plain[0].pulse_offset == 0);
+    CHECK(plain[0].range_m == Approx(600.0).margin(1e-9));
+}
+
+TEST_CASE("a strong near return saturates and never reports more than the pulse", "[beam_receiver]") {
+    SensorConfig c;
+    c.range_folding = false;
+    const BeamReceiver receiver(c, vacuum(), false);
+    // A white wall 5 m away would put 7e-9 J on the detector: amps, far past the 2 mA clip.
+    const auto r = receiver.receive({one_surface(5.0, 7e-9)}, BeamKey{1, 0, 0});
+    REQUIRE(r.size() == 1);
+    CHECK(r[0].saturated);
+    CHECK(r[0].energy_j < 7e-9);
+    CHECK(r[0].energy_j == Approx(c.saturation_current_a / (receiver.apd().amps_per_watt() *
+                                                            receiver.waveform().pulse().peak_per_joule())));
+    CHECK(r[0].energy_j < c.pulse_energy_j());
+}
+
+TEST_CASE("hard cases give finite, sensible numbers: 2 km, grazing stretch, sub-threshold", "[beam_receiver]") {
+    SensorConfig c;
+    c.range_folding = false;
+    const BeamReceiver receiver(c, vacuum());
+    // A 0.3 m drone at 2 km holding 6 % of the footprint: about 1e-15 J.
+    auto far = receiver.receive({one_surface(2000.0, 2e-15)}, BeamKey{1, 0, 1});
+    for (const auto& r : far) {
+        CHECK(std::isfinite(r.range_m));
+        CHECK(std::isfinite(r.energy_j));
+        CHECK(r.snr > 0.0);
+    }
+    // A grazing surface: 16 echoes spread over 25 m of range make one stretched, weaker pulse.
+    BeamSurface grazing;
+    grazing.object_id = 2;
+    grazing.weight = 1.0;
+    for (int i = 0; i < 16; ++i) grazing.echoes.push_back({330.0 + 25.0 * i / 15.0, 1e-13 / 16, 0});
+    const auto stretched = receiver.receive({grazing}, BeamKey{1, 0, 2});
+    REQUIRE(stretched.size() >= 1);
+    for (const auto& r : stretched) {
+        if (r.source != ReturnSource::surface) continue;
+        CHECK(r.range_m > 330.0);
+        CHECK(r.range_m < 355.0);
+        CHECK(std::isfinite(r.snr));
+    }
+    // Nothing but noise below the threshold: at most false alarms, never a surface.
+    for (const auto& r : receiver.receive({one_surface(2000.0, 1e-22)}, BeamKey{1, 0, 3}))
+        CHECK(r.source == ReturnSource::false_alarm);
+}
+
+TEST_CASE("reported returns: all, first, last, strongest, first and last", "[beam_receiver]") {
+    SensorConfig c;
+    c.range_folding = false;
+    auto receive = [&](ReportedReturns mode) {
+        c.reported_returns = mode;
+        const BeamReceiver receiver(c, vacuum(), false);
+        return receiver.receive({one_surface(100.0, 1e-15, 1), one_surface(101.0, 5e-15, 2), one_surface(102.0, 2e-15, 3)},
+                                BeamKey{1, 0, 0});
+    };
+    CHECK(receive(ReportedReturns::all).size() == 3);
+    CHECK(receive(ReportedReturns::first).front().object_id == 1);
+    CHECK(receive(ReportedReturns::last).front().object_id == 3);
+    CHECK(receive(ReportedReturns::strongest).front().object_id == 2);
+    const auto both = receive(ReportedReturns::first_and_last);
+    REQUIRE(both.size() == 2);
+    CHECK(both[0].object_id == 1);
+    CHECK(both[1].object_id == 3);
+}
