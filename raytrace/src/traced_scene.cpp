@@ -65,6 +65,9 @@ struct TracedScene::Impl {
     Eigen::Vector3d origin_world;
     Device device;
     EmbreeScene top;
+    EmbreeScene volumes;  // fog and cloud boundaries, traced only by volumes_along
+    std::vector<const scene::SceneObject*> volume_objects;  // by geometry id in `volumes`
+    std::vector<const float*> volume_vertices;
     std::vector<ModelBvh> models;
     std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene
     std::map<const scene::Model*, std::size_t> model_index;
@@ -96,12 +99,15 @@ struct TracedScene::Impl {
         // Dynamic: Embree then keeps one BVH per geometry and rebuilds only the instances that
         // move with each new time window, not the static terrain or the background map.
         rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
+        volumes.reset(rtcNewScene(device.get()));
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
-            if (object.trajectory.is_static()) add_static_mesh(object);
+            if (object.model->is_volume()) add_volume(object);
+            else if (object.trajectory.is_static()) add_static_mesh(object);
             else add_moving_instance(object);
         }
         if (scene.background && !scene.background->points_world.empty()) add_discs(*scene.background);
+        rtcCommitScene(volumes.get());
         check("building the scene");
         set_time_window(0.0, 0.0, 2);
     }
@@ -147,6 +153,19 @@ struct TracedScene::Impl {
         entry.vertices = vertices;
         attach(std::move(entry));
     }
+
+    void add_volume(const scene::SceneObject& object) {
+        float* vertices = nullptr;
+        Geometry g = triangle_geometry(object.model->mesh, relative_from_model(object, 0.0), &vertices);
+        rtcCommitGeometry(g.get());
+        const unsigned id = rtcAttachGeometry(volumes.get(), g.get());
+        if (id != volume_objects.size()) throw std::logic_error("Embree geometry ids are not sequential");
+        volume_objects.push_back(&object);
+        volume_vertices.push_back(vertices);
+        volume_geometries.push_back(std::move(g));
+    }
+
+    std::vector<Geometry> volume_geometries;
 
     void add_moving_instance(const scene::SceneObject& object) {
         auto [it, inserted] = model_index.emplace(object.model.get(), models.size());
@@ -282,6 +301,54 @@ struct TracedScene::Impl {
         return hit;
     }
 };
+
+std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
+    std::vector<VolumeSegment> segments;
+    if (impl_->volume_objects.empty()) return segments;
+    const Eigen::Vector3d o = ray.origin_world - impl_->origin_world;
+    struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
+    std::vector<Open> open;
+    auto close = [&](std::uint32_t geometry, double enter_m, double exit_m, std::uint32_t prim) {
+        const scene::SceneObject& object = *impl_->volume_objects[geometry];
+        const scene::Material& m = object.model->materials[object.model->mesh.triangle_material[prim]];
+        segments.push_back({object.id, enter_m, exit_m, m.extinction_per_m, m.backscatter_per_m_sr});
+    };
+    double t = 0.0;
+    // Boundary by boundary: each crossing enters or leaves one volume.
+    for (int crossing = 0; crossing < 256; ++crossing) {
+        RTCRayHit rh;
+        impl_->to_embree(ray, rh);
+        rh.ray.tnear = static_cast<float>(t);
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        rtcIntersect1(impl_->volumes.get(), &context, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+        const std::uint32_t g = rh.hit.geomID;
+        const auto& tri = impl_->volume_objects[g]->model->mesh.triangles[rh.hit.primID];
+        const float* v = impl_->volume_vertices[g];
+        Eigen::Vector3d corner[3];
+        for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(v[3 * tri[k]], v[3 * tri[k] + 1], v[3 * tri[k] + 2]);
+        const Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+        const double range = triangle_distance(o, ray.direction, corner[0], corner[1], corner[2]).value_or(rh.ray.tfar);
+        const bool entering = normal.dot(ray.direction) < 0.0;
+        const auto it = std::find_if(open.begin(), open.end(), [&](const Open& x) { return x.geometry == g; });
+        if (entering) {
+            if (it == open.end()) open.push_back({g, range, rh.hit.primID});
+        } else if (it != open.end()) {
+            close(g, it->enter_m, range, rh.hit.primID);
+            open.erase(it);
+        } else {
+            close(g, 0.0, range, rh.hit.primID);  // the ray started inside
+        }
+        // Step past this boundary by more than float resolution at its distance.
+        t = range + 1e-4 + 1e-6 * range;
+    }
+    for (const Open& x : open) close(x.geometry, x.enter_m, ray.max_range_m, x.prim);
+    std::sort(segments.begin(), segments.end(), [](const VolumeSegment& a, const VolumeSegment& b) { return a.enter_m < b.enter_m; });
+    return segments;
+}
+
+bool TracedScene::has_volumes() const { return !impl_->volume_objects.empty(); }
 
 TracedScene::TracedScene(const scene::Scene& scene, const Eigen::Vector3d& origin_world)
     : impl_(std::make_unique<Impl>(scene, origin_world)) {}

@@ -85,11 +85,23 @@ private:
                 material.reflectance = r.GetNumberAsDouble();
                 if (!(material.reflectance >= 0.0 && material.reflectance <= 1.0))
                     fail(field + ".extras.ladar.reflectance", "must lie in [0, 1], got " + std::to_string(material.reflectance));
-            } else {
+            } else if (!(ladar.IsObject() && ladar.Has("extinction_per_m"))) {
                 report_.defaulted_materials.push_back(material.name);
+            }
+            if (ladar.IsObject()) {
+                material.extinction_per_m = non_negative(ladar, "extinction_per_m", field);
+                material.backscatter_per_m_sr = non_negative(ladar, "backscatter_per_m_sr", field);
             }
             model.materials.push_back(std::move(material));
         }
+    }
+
+    double non_negative(const tinygltf::Value& ladar, const char* key, const std::string& field) const {
+        if (!ladar.Has(key)) return 0.0;
+        const tinygltf::Value& v = ladar.Get(key);
+        if (!v.IsNumber() || !(v.GetNumberAsDouble() >= 0.0) || !std::isfinite(v.GetNumberAsDouble()))
+            fail(field + ".extras.ladar." + key, "must be a finite number >= 0");
+        return v.GetNumberAsDouble();
     }
 
     std::vector<int> root_nodes() const {

@@ -61,6 +61,10 @@ void write_gltf(const Model& model, const std::filesystem::path& file) {
         tinygltf::Material material;
         material.name = model.materials[m].name;
         tinygltf::Value::Object ladar{{"reflectance", tinygltf::Value(model.materials[m].reflectance)}};
+        if (model.materials[m].is_volume()) {
+            ladar["extinction_per_m"] = tinygltf::Value(model.materials[m].extinction_per_m);
+            ladar["backscatter_per_m_sr"] = tinygltf::Value(model.materials[m].backscatter_per_m_sr);
+        }
         material.extras = tinygltf::Value(tinygltf::Value::Object{{"ladar", tinygltf::Value(ladar)}});
         g.materials.push_back(material);
 

@@ -133,11 +133,28 @@ private:
     std::map<fs::path, std::shared_ptr<const Model>> models_;
 };
 
-/// Per-object reflectance: `reflectance` sets every material, then `materials` sets named ones.
-/// Returns the shared model untouched when there is nothing to override, else a private copy.
+/// Per-object reflectance: `reflectance` sets every material, then `materials` sets named ones;
+/// `medium` turns every material into a volume (fog or cloud). Returns the shared model untouched
+/// when there is nothing to override, else a private copy.
 std::shared_ptr<const Model> apply_material_overrides(JsonFields& o, std::shared_ptr<const Model> shared) {
-    if (!o.has("reflectance") && !o.has("materials")) return shared;
+    if (!o.has("reflectance") && !o.has("materials") && !o.has("medium")) return shared;
     auto model = std::make_shared<Model>(*shared);
+    if (o.has("medium")) {
+        JsonFields medium(o.object("medium"), o.file(), o.path_of("medium"));
+        Material m;
+        if (medium.has("mor_m")) {
+            if (medium.has("extinction_per_km")) medium.fail("mor_m", "give mor_m or extinction_per_km, not both");
+            m = fog_medium("", medium.number("mor_m", 1.0, 1e6));
+        } else {
+            m.extinction_per_m = medium.number("extinction_per_km", 1e-6, 1e6) / 1000.0;
+            m.backscatter_per_m_sr = medium.number("backscatter_per_km_sr", 0.0, 1e6) / 1000.0;
+        }
+        medium.reject_unknown_keys();
+        for (auto& material : model->materials) {
+            material.extinction_per_m = m.extinction_per_m;
+            material.backscatter_per_m_sr = m.backscatter_per_m_sr;
+        }
+    }
     if (o.has("reflectance")) {
         const double rho = o.number("reflectance", 0.0, 1.0);
         for (auto& m : model->materials) m.reflectance = rho;

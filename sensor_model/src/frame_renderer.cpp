@@ -10,6 +10,7 @@
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
+#include "ladarsim/sensor_model/volume_echoes.h"
 
 namespace ladarsim::sensor_model {
 
@@ -136,12 +137,23 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         traced_.trace(rays, hits);
 
         surface_hits.clear();
+        std::vector<BeamSurface> volume_surfaces;
+        RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame,
+                                    static_cast<std::uint32_t>(firing_index));
         for (int i = 0; i < samples; ++i) {
+            std::vector<raytrace::VolumeSegment> volumes;
+            if (traced_.has_volumes()) {
+                volumes = traced_.volumes_along(rays[i]);
+                add_volume_echoes(volumes, hits[i] ? hits[i]->range_m : sensor.max_range_m,
+                                  pulse_energy_j * sub_rays[i].weight * sensor.optics_efficiency, sub_rays[i].weight,
+                                  aperture_area_m2, receiver_, volume_draws, volume_surfaces);
+            }
             if (!hits[i]) continue;
             const auto& h = *hits[i];
             const double t = receiver_.transmission(h.range_m);
+            const double fog = std::exp(-2.0 * optical_depth(volumes, h.range_m));
             const double energy = lambertian_echo_energy_j(pulse_energy_j, sub_rays[i].weight, sensor.optics_efficiency,
-                                                           t * t, h.reflectance, h.cos_incidence, aperture_area_m2,
+                                                           t * t * fog, h.reflectance, h.cos_incidence, aperture_area_m2,
                                                            h.range_m);
             surface_hits.push_back({h.range_m, sub_rays[i].weight, energy, h.object_id,
                                     rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
@@ -170,6 +182,8 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
             surfaces.push_back(std::move(surface));
             first = last;
         }
+
+        for (BeamSurface& v : volume_surfaces) surfaces.push_back(std::move(v));
 
         const Eigen::Vector3d axis_sensor = sensor_from_beam_m.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);

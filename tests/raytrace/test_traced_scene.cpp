@@ -218,3 +218,42 @@ TEST_CASE("Embree's own errors arrive as exceptions carrying its message", "[tra
         CHECK_THAT(e.what(), Catch::Matchers::Contains("Embree") && Catch::Matchers::Contains("invalid timestep"));
     }
 }
+
+TEST_CASE("volumes: where a ray runs inside fog, from outside and from inside", "[traced_scene]") {
+    // A 10 m fog cube centred 50 m ahead: two triangles per face, outward, from a box plate set.
+    auto cube = std::make_shared<scene::Model>();
+    for (int k = 0; k < 8; ++k)
+        cube->mesh.positions.emplace_back(k & 1 ? 5.0f : -5.0f, k & 2 ? 5.0f : -5.0f, k & 4 ? 5.0f : -5.0f);
+    cube->mesh.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                            {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    cube->mesh.triangle_material.assign(12, 0);
+    cube->materials = {scene::fog_medium("fog", 300.0)};
+    REQUIRE(cube->is_volume());
+    scene::Scene scene;
+    scene.objects.push_back(object_at(5, cube, fixed_at(50.0, 0, 0), scene::ObjectClass::cloud));
+    scene.objects.push_back(object_at(6, plate(30.0, 0.3), fixed_at(80.0, 0, 0)));
+    TracedScene traced(scene, Eigen::Vector3d::Zero());
+    REQUIRE(traced.has_volumes());
+
+    // Surfaces see through the fog: the plate behind it is the hit.
+    const Ray through = ray_from({0, 0, 0}, {80.0, 1.0, 0.5});
+    const auto hit = traced.trace(through);
+    REQUIRE(hit);
+    CHECK(hit->object_id == 6u);
+    const auto outside = traced.volumes_along(through);
+    REQUIRE(outside.size() == 1);
+    CHECK(outside[0].object_id == 5u);
+    CHECK(outside[0].enter_m == Approx(plane_distance(through, {45.0, 0, 0}, Eigen::Vector3d::UnitX())).margin(1e-4));
+    CHECK(outside[0].exit_m == Approx(plane_distance(through, {55.0, 0, 0}, Eigen::Vector3d::UnitX())).margin(1e-4));
+    CHECK(outside[0].extinction_per_m == Approx(std::log(20.0) / 300.0));
+
+    // Starting inside: the segment opens at 0.
+    const Ray from_inside = ray_from({50.0, 0, 0}, {80.0, 0, 0});
+    const auto inside = traced.volumes_along(from_inside);
+    REQUIRE(inside.size() == 1);
+    CHECK(inside[0].enter_m == 0.0);
+    CHECK(inside[0].exit_m == Approx(5.0).margin(1e-4));
+
+    // Missing the cube: nothing.
+    CHECK(traced.volumes_along(ray_from({0, 0, 0}, {50.0, 20.0, 0})).empty());
+}

@@ -26,4 +26,13 @@ struct Hit {
     float cos_incidence = 1.0f;      ///< |cos| of the angle between the ray and the surface normal
 };
 
+/// A stretch of a ray inside a volume medium (fog, cloud).
+struct VolumeSegment {
+    std::uint32_t object_id = 0;
+    double enter_m = 0.0;  ///< along the ray; 0 when the ray starts inside
+    double exit_m = 0.0;   ///< the ray's max_range_m when it never leaves
+    double extinction_per_m = 0.0;
+    double backscatter_per_m_sr = 0.0;
+};
+
 }  // namespace ladarsim::raytrace

@@ -9,13 +9,24 @@
 
 namespace ladarsim::scene {
 
-/// 1550 nm optical properties of a surface. Volume media (fog, cloud) arrive with the
-/// sensor-physics issue.
+/// Optical properties at the sensor wavelength. A material with extinction is a volume medium
+/// (fog, cloud): its closed mesh bounds a region that attenuates and backscatters, and is never a
+/// reflecting surface.
 struct Material {
     std::string name;
     /// Lambertian (diffuse) reflectance at the sensor wavelength, 0..1.
     double reflectance = 0.3;
+    double extinction_per_m = 0.0;      ///< > 0 makes this a volume medium
+    double backscatter_per_m_sr = 0.0;  ///< volume backscatter coefficient (180 deg)
+
+    bool is_volume() const { return extinction_per_m > 0.0; }
 };
+
+/// Fog of meteorological optical range `mor_m` (Hahner et al. 2021): extinction ln(20) / MOR,
+/// backscatter 0.046 / MOR.
+inline Material fog_medium(std::string name, double mor_m) {
+    return Material{std::move(name), 0.0, 2.995732273553991 / mor_m, 0.046 / mor_m};
+}
 
 /// Reflectance given to a glTF material that carries no `extras.ladar.reflectance`:
 /// 0.3 sits in the middle of the 1550 nm estimates for vegetation, concrete and painted metal.
@@ -36,6 +47,8 @@ struct Model {
     std::vector<Material> materials;
 
     Eigen::AlignedBox3f bounds() const;
+    /// True when every material is a volume medium: the model is a fog or cloud volume.
+    bool is_volume() const;
 };
 
 }  // namespace ladarsim::scene

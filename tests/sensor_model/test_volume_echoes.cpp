@@ -1,0 +1,112 @@
+// Fog and cloud: free-path backscatter against the integral it estimates, attenuation of what
+// lies behind, and a sensor that starts inside a cloud.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "ladarsim/scene/procedural_models.h"
+#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/volume_echoes.h"
+#include "../support/scene_builders.h"
+
+using namespace ladarsim;
+using namespace ladarsim::sensor_model;
+using namespace ladarsim::test;
+
+namespace {
+
+Atmosphere vacuum() {
+    Atmosphere a;
+    a.visibility_m = std::numeric_limits<double>::infinity();
+    return a;
+}
+
+/// A closed box of fog (meteorological optical range `mor_m`) spanning x in [x0, x1].
+std::shared_ptr<const scene::Model> fog_box(double x0, double x1, double half_width, double mor_m) {
+    auto m = std::make_shared<scene::Model>(scene::make_box_building(x1 - x0, 2 * half_width, 2 * half_width));
+    for (auto& material : m->materials) material = scene::fog_medium("fog", mor_m);
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("free-path sampling of backscatter is an unbiased estimate of its integral", "[volume]") {
+    SensorConfig c;
+    c.range_folding = false;
+    const BeamReceiver receiver(c, vacuum(), false);
+    const scene::Material fog = scene::fog_medium("fog", 150.0);  // alpha 0.02 /m, beta 3.1e-4 /m/sr
+    const raytrace::VolumeSegment segment{9, 40.0, 140.0, fog.extinction_per_m, fog.backscatter_per_m_sr};
+    const double area = c.aperture_area_m2(), r2 = area / M_PI;
+    const int draws = 200000;
+    RandomSequence rng(11, RandomStream::volume_scatter, 0, 0);
+    std::vector<BeamSurface> volumes;
+    for (int i = 0; i < draws; ++i)
+        add_volume_echoes(std::span(&segment, 1), 1e9, 1.0, 1.0 / draws, area, receiver, rng, volumes);
+    REQUIRE(volumes.size() == 1);
+    CHECK(volumes[0].source == ReturnSource::volume);
+    CHECK(volumes[0].object_id == 9);
+    double estimate = 0.0;
+    for (const auto& e : volumes[0].echoes) {
+        CHECK(e.range_m >= 40.0);
+        CHECK(e.range_m <= 140.0);
+        estimate += e.energy_j;
+    }
+    estimate /= draws;
+    // The integral by the midpoint rule: int beta exp(-2 alpha s) pi r^2 / (R^2 + r^2) ds.
+    double integral = 0.0;
+    const int steps = 100000;
+    const double ds = 100.0 / steps;
+    for (int k = 0; k < steps; ++k) {
+        const double s = (k + 0.5) * ds, range = 40.0 + s;
+        integral += fog.backscatter_per_m_sr * std::exp(-2.0 * fog.extinction_per_m * s) * M_PI * r2 / (range * range + r2) * ds;
+    }
+    CHECK(estimate == Approx(integral).epsilon(0.01));
+}
+
+TEST_CASE("a sensor inside fog: the wall behind is dimmed by exp(-2 tau), the fog itself returns", "[volume]") {
+    Scenario s;
+    s.sensor.beams_az = 5;
+    s.sensor.beams_el = 1;
+    s.sensor.field_az_deg = 0.01;
+    s.sensor.field_el_deg = 0.01;
+    s.sensor.range_folding = false;
+    s.sensor.saturation_current_a = 1e6;
+    s.render.noise = false;
+    s.atmosphere = vacuum();
+    s.mount.gimbal_az_deg = 0.0;
+    s.mount.gimbal_el_deg = 0.0;
+    const double mor = 100.0, fog_end = 30.0, wall = 80.0;
+    // The fog box runs from x = -20 m (behind the sensor) to 30 m: the beams start inside it.
+    s.scene.objects.push_back(object_at(1, fog_box(-20.0, fog_end, 10.0, mor), fixed_at(5.0, 0.0, -10.0), scene::ObjectClass::cloud));
+    s.scene.objects.push_back(object_at(2, plate(40.0, 0.5), fixed_at(wall, 0.0, 0.0), scene::ObjectClass::building));
+    FrameRenderer renderer(s);
+    const Frame f = renderer.render(0);
+
+    Scenario clear = s;
+    clear.scene.objects.erase(clear.scene.objects.begin());
+    FrameRenderer clear_renderer(clear);
+    const Frame g = clear_renderer.render(0);
+
+    const double alpha = scene::fog_medium("fog", mor).extinction_per_m;
+    int walls = 0, fogs = 0;
+    for (const Return& r : f.returns) {
+        REQUIRE(std::isfinite(r.intensity));
+        REQUIRE(std::isfinite(r.range_m));
+        if (r.object_id == 2) {
+            ++walls;
+            const auto clear_wall = std::find_if(g.returns.begin(), g.returns.end(),
+                                                 [&](const Return& x) { return x.column == r.column && x.object_id == 2; });
+            REQUIRE(clear_wall != g.returns.end());
+            // 30 m of fog along the (nearly axial) beam, both ways.
+            CHECK(r.intensity / clear_wall->intensity == Approx(std::exp(-2.0 * alpha * fog_end)).epsilon(2e-3));
+        } else {
+            REQUIRE(r.object_id == 1);
+            CHECK(r.source == ReturnSource::volume);
+            CHECK(r.range_m < fog_end + 1.0);
+            ++fogs;
+        }
+    }
+    CHECK(walls == 5);
+    CHECK(fogs >= 1);
+}
