@@ -49,7 +49,7 @@ std::vector<raytrace::Ray> frame_rays(double elevation_deg) {
     std::vector<raytrace::Ray> rays;
     const double el0 = elevation_deg * M_PI / 180.0;
     for (int b = 0; b < raster.beam_count(); ++b) {
-        const sensor_model::RasterBeam beam = raster.beam(b);
+        const sensor_model::RasterBeam beam = raster.beam(b / raster.columns(), b % raster.columns());
         for (const auto& s : sub) {
             const double az = beam.az_offset_rad + s.offset_x_rad, el = el0 + beam.el_offset_rad + s.offset_y_rad;
             raytrace::Ray r;

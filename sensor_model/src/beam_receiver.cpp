@@ -97,7 +97,8 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
         for (Echo& e : s.echoes) e.surface = i;
         if (!noise_ || s.source != ReturnSource::surface || s.echoes.empty()) continue;
         const double range = range_moments(s.echoes).first;
-        const double spot = range * sensor_.divergence_mrad * 1e-3 * std::sqrt(std::max(s.weight, 1e-12));
+        const double spot = range * std::sqrt(sensor_.divergence_mrad * sensor_.divergence_el_mrad) * 1e-3 *
+                            std::sqrt(std::max(s.weight, 1e-12));
         const double factor = speckle.gamma_unit_mean(
             speckle_cells(sensor_.wavelength_nm * 1e-9, range, spot, sensor_.aperture_diameter_m));
         for (Echo& e : s.echoes) e.energy_j *= factor;

@@ -97,6 +97,8 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
     const auto& sensor = scenario_.sensor;
     const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor();
     const int samples = footprint_.samples();
+    // The footprint is round in units of the azimuth divergence; elliptical beams stretch it in elevation.
+    const double ellipticity = sensor.divergence_el_mrad / sensor.divergence_mrad;
     std::vector<SubRay> sub_rays(static_cast<std::size_t>(samples));
     std::vector<double> uniforms(2 * static_cast<std::size_t>(samples));
     std::vector<raytrace::Ray> rays(static_cast<std::size_t>(samples));
@@ -110,8 +112,8 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
     const double photoelectrons_per_joule = sensor.responsivity_a_per_w / kElementaryCharge_c;
 
     for (int step = 0; step < raster_.columns(); ++step) {
-        const int firing_index = row * raster_.columns() + step;
-        const RasterBeam beam = raster_.beam(firing_index);
+        const int cell_index = row * raster_.columns() + step;  // keys the beam's random draws
+        const RasterBeam beam = raster_.beam(row, step);
         const Eigen::Matrix3d sensor_from_beam_m = sensor_from_beam(pointing, beam.az_offset_rad, beam.el_offset_rad);
         const Eigen::Matrix3d world_from_beam = world_from_sensor.linear() * sensor_from_beam_m;
         const double time_s = frame_start_s + beam.time_offset_s;
@@ -119,7 +121,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         if (scenario_.render.jitter) {
             for (int i = 0; i < samples; ++i) {
                 const auto u = uniform4(scenario_.render.seed, RandomStream::footprint_jitter, frame,
-                                        static_cast<std::uint32_t>(firing_index), static_cast<std::uint32_t>(i));
+                                        static_cast<std::uint32_t>(cell_index), static_cast<std::uint32_t>(i));
                 uniforms[2 * i] = u[0];
                 uniforms[2 * i + 1] = u[1];
             }
@@ -128,7 +130,8 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
             footprint_.fixed(sub_rays);
         }
         for (int i = 0; i < samples; ++i) {
-            const Eigen::Vector3d in_beam(1.0, std::tan(sub_rays[i].offset_x_rad), std::tan(sub_rays[i].offset_y_rad));
+            const Eigen::Vector3d in_beam(1.0, std::tan(sub_rays[i].offset_x_rad),
+                                          std::tan(sub_rays[i].offset_y_rad * ellipticity));
             rays[i].origin_world = scenario_.mount.position_world;
             rays[i].direction = (world_from_beam * in_beam).normalized();
             rays[i].time_s = time_s;
@@ -139,7 +142,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         surface_hits.clear();
         std::vector<BeamSurface> volume_surfaces;
         RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame,
-                                    static_cast<std::uint32_t>(firing_index));
+                                    static_cast<std::uint32_t>(cell_index));
         for (int i = 0; i < samples; ++i) {
             std::vector<raytrace::VolumeSegment> volumes;
             if (traced_.has_volumes()) {
@@ -187,7 +190,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
 
         const Eigen::Vector3d axis_sensor = sensor_from_beam_m.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);
-        const BeamKey key{scenario_.render.seed, frame, static_cast<std::uint32_t>(firing_index)};
+        const BeamKey key{scenario_.render.seed, frame, static_cast<std::uint32_t>(cell_index)};
         std::uint8_t return_index = 0;
         for (const DetectedReturn& d : receiver_.receive(std::move(surfaces), key)) {
             Return r;

@@ -16,13 +16,21 @@ namespace {
 const std::vector<std::string> kReportedReturnsNames = {"all", "first", "last", "strongest", "first_and_last"};
 }
 
+std::string to_string(ScanPattern scan) { return scan == ScanPattern::galvo ? "galvo" : "spinning"; }
+
 std::string to_string(ReportedReturns r) { return kReportedReturnsNames[static_cast<std::size_t>(r)]; }
 
 double SensorConfig::line_duration_s() const {
+    if (scan == ScanPattern::spinning) return 1.0 / frame_rate_hz;  // one revolution holds every row
     return sweep == GalvoSweep::sawtooth ? 1.0 / galvo_rate_hz : 0.5 / galvo_rate_hz;
 }
-double SensorConfig::frame_scan_duration_s() const { return beams_el * line_duration_s(); }
-double SensorConfig::beam_dwell_s() const { return line_duration_s() / beams_az; }
+double SensorConfig::frame_scan_duration_s() const {
+    return scan == ScanPattern::spinning ? 1.0 / frame_rate_hz : beams_el * line_duration_s();
+}
+double SensorConfig::beam_dwell_s() const {
+    // A spinning head fires its channels one after another within each azimuth step.
+    return scan == ScanPattern::spinning ? line_duration_s() / (double(beams_az) * beams_el) : line_duration_s() / beams_az;
+}
 double SensorConfig::pulses_per_beam() const { return pulse_rate_hz * beam_dwell_s(); }
 double SensorConfig::unambiguous_range_m() const { return kSpeedOfLight_mps / (2.0 * pulse_rate_hz); }
 double SensorConfig::beam_pitch_az_mrad() const { return field_az_deg * std::numbers::pi / 180.0 / beams_az * 1e3; }
@@ -47,23 +55,70 @@ void SensorConfig::validate(const std::string& file) const {
                                   std::to_string(1e3 / frame_rate_hz) + " ms");
     }
     if (gimbal_el_min_deg >= gimbal_el_max_deg) fail("gimbal_el_min_deg", "must be below gimbal_el_max_deg");
+    if (scan == ScanPattern::galvo && field_az_deg > 180.0) fail("field_az_deg", "a galvo field must be at most 180 deg");
+    if (field_el_deg > 180.0) fail("field_el_deg", "must be at most 180 deg");
 }
 
-std::vector<std::string> sensor_presets() { return {"paper_ladar"}; }
+std::vector<std::string> sensor_presets() { return {"paper_ladar", "velodyne_vlp16"}; }
 
 SensorConfig sensor_preset(const std::string& name) {
     if (name == "paper_ladar") return SensorConfig{};
+    if (name == "velodyne_vlp16") {
+        // The sensor the paper measured a real drone with. Geometry from Velodyne's VLP-16 manual:
+        // 16 channels 2 deg apart over +-15 deg, 0.1-0.4 deg azimuth steps at 5-20 Hz (0.2 deg at
+        // 10 Hz here), 903 nm, beam divergence 3.0 mrad horizontal x 1.5 mrad vertical, 100 m range,
+        // strongest return. Velodyne publishes no radiometry: the transmitter and Si APD receiver
+        // values below are estimates for a class 1 905 nm pulsed diode (tens of W, a few ns).
+        SensorConfig c;
+        c.preset = name;
+        c.wavelength_nm = 903.0;
+        c.scan = ScanPattern::spinning;
+        c.field_az_deg = 360.0;
+        c.field_el_deg = 32.0;
+        c.beams_az = 1800;
+        c.beams_el = 16;
+        c.divergence_mrad = 3.0;
+        c.divergence_el_mrad = 1.5;
+        c.frame_rate_hz = 10.0;
+        c.pulse_rate_hz = 288e3;  // 16 x 1800 x 10: one pulse per channel and step
+        c.max_range_m = 100.0;
+        c.gimbal_az_limit_deg = 0.0;
+        c.gimbal_el_min_deg = -1e-9;
+        c.gimbal_el_max_deg = 0.0;
+        c.gimbal_slew_rate_dps = 0.0;
+        c.peak_power_w = 30.0;
+        c.pulse_width_ns = 6.0;
+        c.range_folding = false;
+        c.aperture_diameter_m = 0.025;
+        c.optics_efficiency = 0.5;
+        c.receiver_fov_mrad = 4.0;
+        c.filter_width_nm = 20.0;
+        c.responsivity_a_per_w = 0.6;
+        c.apd_gain = 100.0;
+        c.excess_noise_factor = 4.0;
+        c.bandwidth_hz = 100e6;
+        c.dark_current_a = 1e-10;
+        c.load_resistance_ohm = 10e3;
+        c.false_alarm_rate_hz = 10.0;
+        c.reported_returns = ReportedReturns::strongest;
+        return c;
+    }
     throw std::invalid_argument("unknown sensor preset \"" + name + "\"");
 }
 
 SensorConfig read_sensor_config(JsonFields& sensor) {
     SensorConfig c = sensor_preset(sensor.choice("preset", sensor_presets(), "paper_ladar"));
     c.wavelength_nm = sensor.number("wavelength_nm", 200.0, 20000.0, c.wavelength_nm);
-    c.field_az_deg = sensor.number("field_az_deg", 1e-4, 180.0, c.field_az_deg);
-    c.field_el_deg = sensor.number("field_el_deg", 1e-4, 180.0, c.field_el_deg);
+    const std::string scan = sensor.choice("scan", {"galvo", "spinning"}, to_string(c.scan));
+    c.scan = scan == "galvo" ? ScanPattern::galvo : ScanPattern::spinning;
+    c.field_az_deg = sensor.number("field_az_deg", 1e-4, 360.0, c.field_az_deg);
+    c.field_el_deg = sensor.number("field_el_deg", 1e-4, 360.0, c.field_el_deg);
     c.beams_az = static_cast<int>(sensor.integer("beams_az", 1, 65535, c.beams_az));
     c.beams_el = static_cast<int>(sensor.integer("beams_el", 1, 65535, c.beams_el));
     c.divergence_mrad = sensor.number("divergence_mrad", 1e-4, 100.0, c.divergence_mrad);
+    // One divergence given for a round beam sets both axes.
+    c.divergence_el_mrad = sensor.number("divergence_el_mrad", 1e-4, 100.0,
+                                         sensor.has("divergence_mrad") ? c.divergence_mrad : c.divergence_el_mrad);
     c.galvo_rate_hz = sensor.number("galvo_rate_hz", 1e-3, 1e7, c.galvo_rate_hz);
     const std::string sweep = sensor.choice("sweep", {"sawtooth", "triangle"}, to_string(c.sweep));
     c.sweep = sweep == "sawtooth" ? GalvoSweep::sawtooth : GalvoSweep::triangle;
@@ -108,7 +163,9 @@ nlohmann::json to_json(const SensorConfig& c) {
         {"field_el_deg", c.field_el_deg},
         {"beams_az", c.beams_az},
         {"beams_el", c.beams_el},
+        {"scan", to_string(c.scan)},
         {"divergence_mrad", c.divergence_mrad},
+        {"divergence_el_mrad", c.divergence_el_mrad},
         {"galvo_rate_hz", c.galvo_rate_hz},
         {"sweep", to_string(c.sweep)},
         {"frame_rate_hz", c.frame_rate_hz},

@@ -10,7 +10,10 @@ using namespace ladarsim::sensor_model;
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
-}
+
+/// The i-th beam the galvo fires in a frame (lines in order).
+RasterBeam fired(const GalvoRaster& r, int i) { return r.beam(i / r.columns(), i % r.columns()); }
+}  // namespace
 
 TEST_CASE("paper raster: beam centres sit at cell centres of the 0.5 deg field", "[galvo_raster]") {
     const GalvoRaster raster(SensorConfig{});
@@ -19,35 +22,35 @@ TEST_CASE("paper raster: beam centres sit at cell centres of the 0.5 deg field",
     const double pitch_az = 0.5 * kDeg / 150.0;
     const double pitch_el = 0.5 * kDeg / 20.0;
 
-    const RasterBeam first = raster.beam(0);
+    const RasterBeam first = fired(raster, 0);
     CHECK(first.column == 0);
     CHECK(first.row == 0);
     // Top-left beam: half a pitch inside the field's left and top edges.
     CHECK(first.az_offset_rad == Approx(0.25 * kDeg - 0.5 * pitch_az).epsilon(1e-14));
     CHECK(first.el_offset_rad == Approx(0.25 * kDeg - 0.5 * pitch_el).epsilon(1e-14));
 
-    const RasterBeam last = raster.beam(raster.beam_count() - 1);
+    const RasterBeam last = fired(raster, raster.beam_count() - 1);
     CHECK(last.column == 149);
     CHECK(last.row == 19);
     CHECK(last.az_offset_rad == Approx(-0.25 * kDeg + 0.5 * pitch_az).epsilon(1e-14));
     CHECK(last.el_offset_rad == Approx(-0.25 * kDeg + 0.5 * pitch_el).epsilon(1e-14));
 
     for (int i = 1; i < 150; ++i) {
-        CHECK(raster.beam(i - 1).az_offset_rad - raster.beam(i).az_offset_rad == Approx(pitch_az).epsilon(1e-12));
+        CHECK(fired(raster, i - 1).az_offset_rad - fired(raster, i).az_offset_rad == Approx(pitch_az).epsilon(1e-12));
     }
 }
 
 TEST_CASE("paper raster: sawtooth timing, one line per 1 ms galvo period", "[galvo_raster]") {
     const GalvoRaster raster(SensorConfig{});
-    CHECK(raster.beam(0).time_offset_s == 0.0);
-    CHECK(raster.beam(1).time_offset_s == Approx(1e-3 / 150.0).epsilon(1e-14));
-    CHECK(raster.beam(149).time_offset_s == Approx(149e-3 / 150.0).epsilon(1e-14));
-    CHECK(raster.beam(150).time_offset_s == Approx(1e-3).epsilon(1e-14));
-    CHECK(raster.beam(150).column == 0);
-    CHECK(raster.beam(2999).time_offset_s == Approx(19e-3 + 149e-3 / 150.0).epsilon(1e-14));
+    CHECK(fired(raster, 0).time_offset_s == 0.0);
+    CHECK(fired(raster, 1).time_offset_s == Approx(1e-3 / 150.0).epsilon(1e-14));
+    CHECK(fired(raster, 149).time_offset_s == Approx(149e-3 / 150.0).epsilon(1e-14));
+    CHECK(fired(raster, 150).time_offset_s == Approx(1e-3).epsilon(1e-14));
+    CHECK(fired(raster, 150).column == 0);
+    CHECK(fired(raster, 2999).time_offset_s == Approx(19e-3 + 149e-3 / 150.0).epsilon(1e-14));
     // Emission times strictly increase in firing order.
     for (int i = 1; i < raster.beam_count(); ++i) {
-        REQUIRE(raster.beam(i).time_offset_s > raster.beam(i - 1).time_offset_s);
+        REQUIRE(fired(raster, i).time_offset_s > fired(raster, i - 1).time_offset_s);
     }
 }
 
@@ -56,12 +59,12 @@ TEST_CASE("triangle sweep: two lines per period, odd lines right to left", "[gal
     c.sweep = GalvoSweep::triangle;
     const GalvoRaster raster(c);
     CHECK(c.frame_scan_duration_s() == Approx(10e-3));
-    const RasterBeam b = raster.beam(150);  // first beam of the second line
+    const RasterBeam b = fired(raster, 150);  // first beam of the second line
     CHECK(b.row == 1);
     CHECK(b.column == 149);
     CHECK(b.time_offset_s == Approx(0.5e-3).epsilon(1e-14));
-    CHECK(raster.beam(299).column == 0);
-    CHECK(raster.beam(300).column == 0);
+    CHECK(fired(raster, 299).column == 0);
+    CHECK(fired(raster, 300).column == 0);
 }
 
 TEST_CASE("sensor preset derived quantities expose the paper's inconsistencies", "[sensor_config]") {
@@ -75,4 +78,21 @@ TEST_CASE("sensor preset derived quantities expose the paper's inconsistencies",
     // Beam pitch 58 urad against a 620 urad divergence: footprints overlap about tenfold.
     CHECK(c.beam_pitch_az_mrad() == Approx(0.5 * std::numbers::pi / 180.0 / 150.0 * 1e3));
     CHECK(c.beams_per_second() == Approx(60000.0));
+}
+
+TEST_CASE("a spinning head fires its channels column by column", "[galvo_raster]") {
+    const SensorConfig c = sensor_preset("velodyne_vlp16");
+    const GalvoRaster raster(c);
+    REQUIRE(raster.columns() == 1800);
+    REQUIRE(raster.rows() == 16);
+    // Channels 2 deg apart from +15 to -15 deg; azimuth steps of 0.2 deg over the revolution.
+    CHECK(raster.beam(0, 0).el_offset_rad * 180.0 / M_PI == Approx(15.0).epsilon(1e-12));
+    CHECK(raster.beam(15, 0).el_offset_rad * 180.0 / M_PI == Approx(-15.0).epsilon(1e-12));
+    CHECK((raster.beam(0, 0).az_offset_rad - raster.beam(0, 1).az_offset_rad) * 180.0 / M_PI == Approx(0.2).epsilon(1e-12));
+    // 10 Hz: a column every 55.6 us, the 16 channels within it 3.47 us apart.
+    CHECK(raster.beam(0, 1).time_offset_s == Approx(0.1 / 1800).epsilon(1e-12));
+    CHECK(raster.beam(1, 0).time_offset_s == Approx(0.1 / 1800 / 16).epsilon(1e-12));
+    CHECK(raster.beam(15, 1799).time_offset_s < 0.1);
+    CHECK(c.pulses_per_beam() == Approx(1.0).epsilon(1e-12));
+    CHECK(c.frame_scan_duration_s() == Approx(0.1).epsilon(1e-12));
 }

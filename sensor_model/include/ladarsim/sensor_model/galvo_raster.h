@@ -21,6 +21,10 @@ struct RasterBeam {
 /// fires k * dwell after the line start, where dwell = line duration / beams_az. A sawtooth sweeps
 /// every line left to right (increasing column); a triangle sweep reverses every other line. The rest of
 /// the frame period after the last line is idle (gimbal settling).
+///
+/// A spinning head (ScanPattern::spinning) fills the same grid column by column instead: at each
+/// of `beams_az` azimuth steps per revolution it fires its `beams_el` channels one after another,
+/// so cell (row, column) fires at (column + row / beams_el) / (beams_az * frame rate).
 class GalvoRaster {
 public:
     explicit GalvoRaster(const SensorConfig& config);
@@ -28,8 +32,9 @@ public:
     int columns() const { return columns_; }
     int rows() const { return rows_; }
     int beam_count() const { return columns_ * rows_; }
-    /// Beam by firing order, 0 .. beam_count()-1.
-    RasterBeam beam(int firing_index) const;
+    /// The beam of raster cell (row, k): the k-th beam a galvo fires on that line, or the beam of
+    /// column k of a spinning head.
+    RasterBeam beam(int row, int k) const;
 
 private:
     int columns_;
@@ -38,6 +43,7 @@ private:
     double field_el_rad_;
     double line_duration_s_;
     GalvoSweep sweep_;
+    ScanPattern scan_;
 };
 
 }  // namespace ladarsim::sensor_model

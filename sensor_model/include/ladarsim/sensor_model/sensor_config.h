@@ -16,6 +16,14 @@ enum class GalvoSweep {
 
 std::string to_string(GalvoSweep sweep);
 
+/// How the beams of a frame are fired.
+enum class ScanPattern {
+    galvo,     ///< line by line: a galvanometer sweeps each elevation row across the field (the paper's LADAR)
+    spinning,  ///< column by column: a spinning head fires all its channels at each azimuth step (Velodyne)
+};
+
+std::string to_string(ScanPattern scan);
+
 /// Which of a beam's detected returns the sensor reports.
 enum class ReportedReturns { all, first, last, strongest, first_and_last };
 
@@ -28,7 +36,9 @@ struct SensorConfig {
     double field_el_deg = 0.5;
     int beams_az = 150;              ///< beams per line
     int beams_el = 20;               ///< lines per frame
-    double divergence_mrad = 0.62;   ///< full angle at the 1/e^2 irradiance radius
+    ScanPattern scan = ScanPattern::galvo;
+    double divergence_mrad = 0.62;   ///< full angle at the 1/e^2 irradiance radius, in azimuth
+    double divergence_el_mrad = 0.62;///< the same in elevation (elliptical beams)
     double galvo_rate_hz = 1000.0;
     GalvoSweep sweep = GalvoSweep::sawtooth;
     double frame_rate_hz = 20.0;
