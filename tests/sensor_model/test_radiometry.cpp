@@ -134,3 +134,14 @@ TEST_CASE("speckle cells: a 0.3 m drone at 2 km fluctuates by about 20 %, a full
     const double wall = speckle_cells(1560e-9, 2000.0, 1.24, 0.05);
     CHECK(1.0 / std::sqrt(wall) < 0.06);
 }
+
+TEST_CASE("no echo carries more than the pulse, however close the surface", "[radiometry]") {
+    const double area = M_PI / 4.0 * 0.05 * 0.05;
+    for (double range : {0.0, 1e-6, 1e-3, 0.025, 1.0, 10.0}) {
+        const double e = lambertian_echo_energy_j(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, area, range);
+        CHECK(e <= 1.0);
+        CHECK(std::isfinite(e));
+    }
+    // At R = r_a a white surface sends half its light into the aperture (view factor 1/2).
+    CHECK(lambertian_echo_energy_j(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, area, 0.025) == Approx(0.5));
+}
