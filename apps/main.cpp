@@ -1,5 +1,7 @@
 // The ladarsim command line: parses arguments and calls the libraries, nothing more.
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <exception>
 #include <iostream>
 
@@ -9,7 +11,10 @@
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/sensor_model/atomic_file.h"
 #include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/sensor_model/target_point_counts.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sensor_config.h"
 
@@ -63,6 +68,23 @@ int main(int argc, char** argv) {
     auto* show = sensor->add_subcommand("show", "Print a preset's parameters and derived quantities as JSON");
     show->add_option("--preset", preset, "Preset name")->check(CLI::IsMember(sensor_model::sensor_presets()));
 
+    std::string table_json, table_markdown, table_plot;
+    int table_frames = 50;
+    auto* table1 = app.add_subcommand(
+        "table1", "Check the paper's Table 1: its printed counts, its Eqs. 4-8 under a 0.5 and a 0.65 deg field, and the\n"
+                  "returns rendered on a 0.3 m plate and quadcopter at each range (docs/table1.md)");
+    table1->add_option("--json", table_json, "Write every number as JSON (a list of rows)");
+    table1->add_option("--markdown", table_markdown, "Write the table as markdown");
+    table1->add_option("--plot", table_plot, "Draw counts against range into this PNG (needs python3-matplotlib)");
+    table1->add_option("--frames", table_frames, "Frames per range, target and noise setting (random sub-beam offsets)")
+        ->check(CLI::PositiveNumber);
+    table1->add_option("--seed", seed, "Random seed");
+    int table_samples = 1024;
+    table1->add_option("--footprint-samples", table_samples,
+                       "Sub-rays per beam (converged at 1024: with the paper's power a beam whose footprint only\n"
+                       "grazes the target still detects it, so sparse sub-rays under-count)")
+        ->check(CLI::Range(1, 4096));
+
     std::string assets_dir;
     auto* assets = app.add_subcommand("make-assets", "Write the procedural glTF models ladarsim ships");
     assets->add_option("dir", assets_dir, "Output directory")->required();
@@ -88,6 +110,40 @@ int main(int argc, char** argv) {
             print_summary(scenario, sensor_model::render_dataset(scenario, options));
         } else if (*show) {
             std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
+        } else if (*table1) {
+            const auto plate = std::make_shared<scene::Model>([] {
+                // A 0.3 m square facing the sensor, the paper's abstraction of the drone.
+                scene::Model m;
+                m.source = "0.3 m plate";
+                m.mesh.positions = {{0, -0.15f, -0.15f}, {0, 0.15f, -0.15f}, {0, 0.15f, 0.15f}, {0, -0.15f, 0.15f}};
+                m.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+                m.mesh.triangle_material = {0, 0};
+                m.materials = {scene::Material{"plate", scene::kDefaultReflectance}};
+                return m;
+            }());
+            const auto drone = std::make_shared<scene::Model>(scene::make_quadcopter());
+            sensor_model::SensorConfig sensor = sensor_model::sensor_preset("paper_ladar");
+            sensor.footprint_samples = table_samples;
+            const nlohmann::json rows = sensor_model::table1_comparison(
+                sensor, plate, drone, table_frames, table1->count("--seed") ? seed : 1,
+                [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
+            const std::string markdown = sensor_model::table1_markdown(rows);
+            std::cout << markdown;
+            if (!table_json.empty()) sensor_model::write_json(table_json, rows);
+            if (!table_markdown.empty()) {
+                sensor_model::AtomicFile out(table_markdown);
+                out.stream() << markdown;
+                out.commit();
+            }
+            if (!table_plot.empty()) {
+                // The plot reads the numbers back from JSON, so it always shows what was written.
+                const std::string json_for_plot = table_json.empty() ? table_plot + ".json" : table_json;
+                if (table_json.empty()) sensor_model::write_json(json_for_plot, rows);
+                const std::string command = "/usr/bin/python3 '" LADARSIM_SOURCE_DIR "/scripts/plot_table1.py' '" +
+                                            json_for_plot + "' '" + table_plot + "'";
+                if (std::system(command.c_str()) != 0) throw std::runtime_error("the plot script failed: " + command);
+                if (table_json.empty()) std::filesystem::remove(json_for_plot);
+            }
         } else if (*assets) {
             scene::write_default_assets(assets_dir);
             std::printf("wrote the procedural models to %s\n", assets_dir.c_str());

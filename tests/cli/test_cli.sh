@@ -56,4 +56,11 @@ mkdir -p "$work/precious" && echo keep >"$work/precious/notes.txt"
 grep -q "refusing to replace" "$work/stderr" || fail "no clear message for a non-dataset directory: $(cat "$work/stderr")"
 [ "$(cat "$work/precious/notes.txt")" = keep ] || fail "a non-dataset directory was touched"
 
+# table1: the JSON rows carry the fields the documentation promises.
+"$bin" table1 --frames 1 --footprint-samples 4 --json "$work/table1.json" >/dev/null 2>&1 || fail "table1 failed"
+for key in range_m paper_tp analytic_tp_0p5deg analytic_tp_0p65deg rendered_plate_mean rendered_plate_min \
+           rendered_plate_max rendered_drone_mean; do
+  [ "$(grep -o "\"$key\"" "$work/table1.json" | wc -l)" -eq 7 ] || fail "table1.json lacks $key in its 7 rows"
+done
+
 if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else echo "cli: $failures failed"; exit 1; fi
