@@ -1,6 +1,8 @@
 // The ladarsim command line: parses arguments and calls the libraries, nothing more.
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <filesystem>
 #include <exception>
 #include <iostream>
@@ -8,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "ladarsim/detect/expected_overlap.h"
+#include "ladarsim/detect/sequence.h"
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/dataset.h"
@@ -38,8 +42,10 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                     double(count) / s.frames);
     }
     std::printf("wrote %s/frames/NNNNNN.pcd (point clouds: PCL, CloudCompare), frames/NNNNNN.exr (range images),\n"
-                "      ground_truth.json and manifest.json\n",
-                s.out_dir.string().c_str());
+                "      ground_truth.json, manifest.json%s\n",
+                s.out_dir.string().c_str(),
+                s.background_points ? (" and background.pcd (" + std::to_string(s.background_points) +
+                                       " points of the static scene)").c_str() : "");
 }
 
 }  // namespace
@@ -84,6 +90,26 @@ int main(int argc, char** argv) {
                        "Sub-rays per beam (converged at 1024: with the paper's power a beam whose footprint only\n"
                        "grazes the target still detects it, so sparse sub-rays under-count)")
         ->check(CLI::Range(1, 4096));
+
+    std::string dataset_dir, detections_file, method_name = "vrbnn", eval_json, eval_plot;
+    detect::DetectorConfig detector;
+    std::uint32_t target_id = 0;
+    auto* detect_cmd = app.add_subcommand("detect", "Run Algorithm 1 (background subtraction, (V-)RBNN, FIR or Kalman) over a dataset");
+    detect_cmd->add_option("dir", dataset_dir, "Dataset directory (frames/*.pcd, background.pcd, ground_truth.json)")->required();
+    detect_cmd->add_option("--method", method_name, "rbnn | vrbnn | kalman")->check(CLI::IsMember({"rbnn", "vrbnn", "kalman"}));
+    detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
+    detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m (V-RBNN uses it until a range is known)");
+    detect_cmd->add_option("--lambda", detector.lambda, "V-RBNN lambda (Algorithm 1: 7)");
+    detect_cmd->add_option("--bias", detector.bias_m, "V-RBNN bias, m (Algorithm 1: 0.01)");
+    detect_cmd->add_option("--resolution", detector.background_resolution_m, "Background octree voxel, m");
+    detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)");
+    detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)");
+
+    auto* eval_cmd = app.add_subcommand("eval", "Score detections against the ground truth: L2, IoU, EAO");
+    eval_cmd->add_option("dir", dataset_dir, "Dataset directory")->required();
+    eval_cmd->add_option("--detections", detections_file, "Detections JSON written by `ladarsim detect`")->required();
+    eval_cmd->add_option("--json", eval_json, "Write the scores (mean_l2_m, mean_iou, eao, frames, failures, per frame)");
+    eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
 
     std::string assets_dir;
     auto* assets = app.add_subcommand("make-assets", "Write the procedural glTF models ladarsim ships");
@@ -143,6 +169,62 @@ int main(int argc, char** argv) {
                                             json_for_plot + "' '" + table_plot + "'";
                 if (std::system(command.c_str()) != 0) throw std::runtime_error("the plot script failed: " + command);
                 if (table_json.empty()) std::filesystem::remove(json_for_plot);
+            }
+        } else if (*detect_cmd) {
+            detector.method = detect::method_from_string(method_name);
+            const detect::Sequence sequence = detect::load_sequence(dataset_dir);
+            if (sequence.background.empty()) spdlog::warn("{}: no background.pcd: nothing is subtracted", dataset_dir);
+            const auto detections = detect::detect_sequence(sequence, detector);
+            nlohmann::json out = {{"method", method_name},
+                                  {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda},
+                                              {"bias_m", detector.bias_m}, {"resolution_m", detector.background_resolution_m},
+                                              {"min_neighbours", detector.min_neighbours}, {"max_diagonal_m", detector.max_diagonal_m},
+                                              {"max_range_jump_m", detector.max_range_jump_m}, {"min_box_m", detector.min_box_m}}},
+                                  {"detections", nlohmann::json::array()}};
+            int found = 0, predicted = 0;
+            for (const auto& d : detections) {
+                out["detections"].push_back(detect::to_json(d));
+                found += d.found && !d.predicted;
+                predicted += d.predicted;
+            }
+            const auto target = target_id ? std::optional<std::uint32_t>(target_id) : detect::default_target(sequence);
+            if (target) {
+                // The supervised run EAO needs is only possible with ground truth; it is stored here so
+                // that `eval` scores exactly what this configuration did.
+                const auto run = detect::supervised_run(sequence, detector, *target);
+                out["target"] = *target;
+                out["supervised"] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
+            }
+            if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + method_name + ".json")).string();
+            sensor_model::write_json(detections_file, out);
+            std::printf("%s over %zu frames: %d detected, %d predicted, %zu without a box; wrote %s\n", method_name.c_str(),
+                        detections.size(), found, predicted, detections.size() - found - predicted, detections_file.c_str());
+        } else if (*eval_cmd) {
+            const detect::Sequence sequence = detect::load_sequence(dataset_dir);
+            const nlohmann::json in = sensor_model::read_json(detections_file);
+            if (!in.contains("supervised") || !in.contains("target"))
+                throw InputError(detections_file, "supervised", "missing: the dataset had no ground truth when detect ran");
+            std::vector<detect::Detection> detections;
+            for (const auto& j : in.at("detections")) detections.push_back(detect::detection_from_json(j));
+            detect::SupervisedRun run;
+            run.iou = in["supervised"]["iou"].get<std::vector<double>>();
+            run.initialised = in["supervised"]["initialised"].get<std::vector<bool>>();
+            run.failures = in["supervised"]["failures"].get<int>();
+            const auto interval = detect::vot_length_interval({static_cast<int>(detections.size())});
+            nlohmann::json scores = detect::evaluate(sequence, detections, run, in["target"].get<std::uint32_t>(), interval);
+            scores["method"] = in.value("method", "");
+            std::printf("%s: %zu frames, mean L2 %.3f m, mean IoU %.3f, EAO %.3f over lengths %d-%d, %d failures, %d frames lost\n",
+                        scores["method"].get<std::string>().c_str(), detections.size(),
+                        scores["mean_l2_m"].is_null() ? NAN : scores["mean_l2_m"].get<double>(), scores["mean_iou"].get<double>(),
+                        scores["eao"].get<double>(), interval.first, interval.second, scores["failures"].get<int>(),
+                        scores["frames_lost"].get<int>());
+            const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
+            if (!json_path.empty()) sensor_model::write_json(json_path, scores);
+            if (!eval_plot.empty()) {
+                const std::string command = "/usr/bin/python3 '" LADARSIM_SOURCE_DIR "/scripts/plot_eval.py' '" + json_path +
+                                            "' '" + eval_plot + "'";
+                if (std::system(command.c_str()) != 0) throw std::runtime_error("the plot script failed: " + command);
+                if (eval_json.empty()) std::filesystem::remove(json_path);
             }
         } else if (*assets) {
             scene::write_default_assets(assets_dir);

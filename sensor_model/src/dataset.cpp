@@ -1,6 +1,9 @@
 #include "ladarsim/sensor_model/dataset.h"
 
 #include <chrono>
+#include <cmath>
+#include <numbers>
+#include <optional>
 #include <filesystem>
 
 #include <spdlog/spdlog.h>
@@ -58,6 +61,44 @@ void swap_in(const std::filesystem::path& staging, const std::filesystem::path& 
     std::filesystem::remove_all(old);
 }
 
+/// The initial map Algorithm 1 subtracts: a survey of the static scene alone (moving objects
+/// removed, noise off) over every direction the frames looked, with beams at half the sensor's
+/// pitch so that a static surface's returns in any frame fall among the survey's points. One
+/// centre sub-ray per beam: the map holds surfaces, not footprints. Returns the number of
+/// points, 0 (and no file) when the scene has nothing static.
+std::size_t write_background_map(const Scenario& scenario, const std::vector<GimbalPointing>& pointings,
+                                 const std::filesystem::path& file) {
+    Scenario survey = scenario;
+    std::erase_if(survey.scene.objects, [](const scene::SceneObject& o) { return !o.trajectory.is_static(); });
+    if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) return 0;
+    survey.mount.cue_object_id = 0;
+    survey.render.noise = false;
+    survey.render.jitter = false;
+    constexpr double kDeg = std::numbers::pi / 180.0;
+    double az_lo = pointings[0].az_rad, az_hi = az_lo, el_lo = pointings[0].el_rad, el_hi = el_lo;
+    for (const auto& p : pointings) {
+        az_lo = std::min(az_lo, p.az_rad), az_hi = std::max(az_hi, p.az_rad);
+        el_lo = std::min(el_lo, p.el_rad), el_hi = std::max(el_hi, p.el_rad);
+    }
+    SensorConfig& c = survey.sensor;
+    const double pitch_az = c.field_az_deg * kDeg / c.beams_az, pitch_el = c.field_el_deg * kDeg / c.beams_el;
+    // The field swept by the gimbal, plus a tenth of the field on each side.
+    const double field_az = std::min(2.0 * std::numbers::pi, az_hi - az_lo + 1.2 * c.field_az_deg * kDeg);
+    const double field_el = std::min(std::numbers::pi, el_hi - el_lo + 1.2 * c.field_el_deg * kDeg);
+    // Half the sensor's pitch, coarsened if needed to stay within four million survey beams.
+    const double coarsen = std::max(1.0, std::sqrt(field_az / (0.5 * pitch_az) * field_el / (0.5 * pitch_el) / 4e6));
+    c.scan = ScanPattern::galvo;
+    c.field_az_deg = field_az / kDeg;
+    c.field_el_deg = field_el / kDeg;
+    c.beams_az = static_cast<int>(std::ceil(field_az / (0.5 * pitch_az * coarsen)));
+    c.beams_el = static_cast<int>(std::ceil(field_el / (0.5 * pitch_el * coarsen)));
+    c.footprint_samples = 1;
+    FrameRenderer renderer(survey);
+    Frame map = renderer.render_at(0, GimbalPointing{0.5 * (az_lo + az_hi), 0.5 * (el_lo + el_hi)});
+    write_frame_pcd(file, map);
+    return map.returns.size();
+}
+
 }  // namespace
 
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) {
@@ -78,6 +119,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     DatasetSummary summary;
     summary.out_dir = out;
     std::vector<FrameGroundTruth> truth;
+    std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
     using Clock = std::chrono::steady_clock;
 
@@ -94,6 +136,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         summary.returns += frame.returns.size();
         for (const auto& r : frame.returns) ++summary.returns_by_object[r.object_id];
         truth.push_back(ground_truth_of(frame));
+        pointings.push_back({frame.gimbal_az_rad, frame.gimbal_el_rad});
         frame_log.push_back({{"index", frame.index},
                              {"start_time_s", frame.start_time_s},
                              {"end_time_s", frame.end_time_s},
@@ -110,6 +153,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
             : 0.0;
 
     write_ground_truth_json(staging / "ground_truth.json", truth);
+    summary.background_points = write_background_map(scenario, pointings, staging / "background.pcd");
     const nlohmann::json manifest = {
         {"software", {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}},
         {"scenario_file", std::filesystem::absolute(scenario.file).string()},

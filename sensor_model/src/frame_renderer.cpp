@@ -243,14 +243,15 @@ std::vector<GroundTruthObject> FrameRenderer::ground_truth(double time_s, const 
     return truth;
 }
 
-Frame FrameRenderer::render(std::uint64_t index) {
+Frame FrameRenderer::render(std::uint64_t index) { return render_at(index, gimbal_pointing(index)); }
+
+Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     Frame frame;
     frame.index = index;
     frame.start_time_s = frame_start_s(index);
     frame.end_time_s = frame.start_time_s + scenario_.sensor.frame_scan_duration_s();
     frame.columns = raster_.columns();
     frame.rows = raster_.rows();
-    const GimbalPointing pointing = gimbal_pointing(index);
     frame.gimbal_az_rad = pointing.az_rad;
     frame.gimbal_el_rad = pointing.el_rad;
 

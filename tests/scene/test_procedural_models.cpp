@@ -2,9 +2,13 @@
 // divergence theorem), and a write/load round trip through glTF.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "ladarsim/scene/gltf_loader.h"
 #include "ladarsim/scene/gltf_writer.h"
@@ -120,4 +124,26 @@ TEST_CASE("write_gltf and load_gltf give the model back, as .glb and as .gltf", 
     write_default_assets(dir / "assets");
     for (const char* name : {"quadcopter.glb", "terrain.glb", "building.glb", "tree.glb"})
         CHECK(std::filesystem::file_size(dir / "assets" / name) > 0);
+}
+
+TEST_CASE("write_gltf writes a .glb with the glTF magic and a .gltf that is glTF 2.0 JSON", "[procedural][gltf]") {
+    // Checked with readers other than load_gltf, so a writer and loader sharing a mistake cannot hide it.
+    test::ScratchDir dir;
+    const Model building = make_box_building(20.0, 12.0, 15.0);
+    write_gltf(building, dir / "b.glb");
+    write_gltf(building, dir / "b.gltf");
+    CHECK_FALSE(std::filesystem::exists(dir / "b.glb.tmp"));
+    CHECK_FALSE(std::filesystem::exists(dir / "b.gltf.tmp"));
+
+    std::ifstream glb(dir / "b.glb", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(glb)), std::istreambuf_iterator<char>());
+    REQUIRE(bytes.size() > 12);
+    CHECK(bytes.substr(0, 4) == "glTF");
+
+    std::ifstream text(dir / "b.gltf");
+    const nlohmann::json j = nlohmann::json::parse(text);  // throws if it is not JSON
+    CHECK(j.at("asset").at("version") == "2.0");
+    REQUIRE(j.at("materials").size() == 1);
+    CHECK(j["materials"][0]["name"] == "concrete");
+    CHECK(j["materials"][0]["extras"]["ladar"]["reflectance"].get<double>() == 0.35);
 }

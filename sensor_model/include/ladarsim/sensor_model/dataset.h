@@ -25,11 +25,14 @@ struct DatasetSummary {
     std::map<std::uint32_t, std::uint64_t> returns_by_object;  ///< object id -> returns over all frames
     double render_seconds = 0.0;
     double beams_per_second = 0.0;
+    std::size_t background_points = 0;  ///< points of background.pcd (0: nothing static, no file)
     std::filesystem::path out_dir;
 };
 
 /// Renders every frame of a scenario and writes the dataset:
-///   frames/NNNNNN.pcd, frames/NNNNNN.exr, ground_truth.json, manifest.json
+///   frames/NNNNNN.pcd, frames/NNNNNN.exr, ground_truth.json, manifest.json, and background.pcd:
+///   the static scene alone, noise-free, from each gimbal pointing used (the initial map that
+///   detection subtracts)
 /// Each file is written under a temporary name and renamed when complete, inside `<out_dir>.partial`,
 /// which replaces `out_dir` once every file is there. `out_dir` may be absent, empty or an earlier
 /// dataset; any other existing path is an InputError, checked before rendering starts.

@@ -25,6 +25,8 @@ public:
     explicit FrameRenderer(const Scenario& scenario);
 
     Frame render(std::uint64_t index);
+    /// Frame `index` with the gimbal held at `pointing` instead of where the cue takes it.
+    Frame render_at(std::uint64_t index, GimbalPointing pointing);
 
     double frame_start_s(std::uint64_t index) const;
     GimbalPointing gimbal_pointing(std::uint64_t index);

@@ -1,0 +1,20 @@
+#pragma once
+// Frame points as detect/ sees them: positions in the sensor frame, nothing else. Recorded frames
+// and ladarsim's own read into the same thing.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ladarsim/sensor_model/frame.h"
+
+namespace ladarsim::detect {
+
+using Points = std::vector<Eigen::Vector3f>;
+
+/// Positions of a frame's returns (sensor frame, metres).
+Points positions_of(const std::vector<sensor_model::Return>& returns);
+
+/// The axis-aligned box of some points, as an OrientedBox with identity orientation.
+sensor_model::OrientedBox bounding_box(const Points& points);
+
+}  // namespace ladarsim::detect

@@ -1,0 +1,55 @@
+#pragma once
+// A rendered or recorded dataset as detect/ uses it, the runs of Algorithm 1 over it, and their
+// scores against the ground truth.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "ladarsim/detect/tracker.h"
+#include "ladarsim/sensor_model/ground_truth_file.h"
+
+namespace ladarsim::detect {
+
+struct Sequence {
+    std::vector<std::uint64_t> frame_index;
+    std::vector<double> time_s;
+    std::vector<Points> frames;
+    Points background;  ///< background.pcd; empty when the dataset has none
+    std::vector<sensor_model::FrameGroundTruth> truth;  ///< empty when there is no ground_truth.json
+};
+
+/// Reads DIR/frames/*.pcd (in name order), DIR/background.pcd and DIR/ground_truth.json when
+/// present. Throws InputError for a missing directory, no frames, or a malformed file.
+Sequence load_sequence(const std::filesystem::path& dir);
+
+/// The id of the first drone in the ground truth (the target to score), if any.
+std::optional<std::uint32_t> default_target(const Sequence& s);
+
+/// The ground-truth box of `target` in frame i, as the axis-aligned box enclosing it in the
+/// sensor frame (the detector's boxes are axis-aligned there).
+std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target);
+
+/// Algorithm 1 over every frame, as a deployed detector would run it.
+std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config);
+
+/// VOT's supervised protocol for EAO: run, and after a failure (IoU 0) skip 5 frames and
+/// re-initialise on the ground truth. Per frame: IoU and whether the tracker was (re-)initialised.
+struct SupervisedRun {
+    std::vector<double> iou;
+    std::vector<bool> initialised;
+    int failures = 0;
+};
+SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target);
+
+/// Scores: per frame L2 and IoU, and mean L2 (frames with a box), mean IoU (all frames), EAO over
+/// `interval` (from vot_length_interval), failures, success and precision curves.
+nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRun& supervised,
+                        std::uint32_t target, std::pair<int, int> interval);
+
+nlohmann::json to_json(const Detection& d);
+Detection detection_from_json(const nlohmann::json& j);
+
+}  // namespace ladarsim::detect

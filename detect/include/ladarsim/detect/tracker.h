@@ -1,0 +1,78 @@
+#pragma once
+// Algorithm 1 end to end: background subtraction, (V-)RBNN clustering, outlier and occlusion
+// removal, and sequential estimation of the target's box (FIR prediction from the history of box
+// centres, or a constant-velocity Kalman filter with gating, the variant beyond the paper).
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "ladarsim/detect/background_subtraction.h"
+#include "ladarsim/detect/clustering.h"
+
+namespace ladarsim::detect {
+
+enum class Method { rbnn, vrbnn, kalman };
+Method method_from_string(const std::string& name);  ///< throws std::invalid_argument
+std::string to_string(Method m);
+
+struct DetectorConfig {
+    Method method = Method::vrbnn;
+    double rbnn_radius_m = 0.2;      ///< RBNN's fixed radius; also V-RBNN's until a range is known
+    double lambda = 7.0;             ///< V-RBNN, Algorithm 1's defaults
+    double bias_m = 0.01;
+    int h_scan = 150;
+    int v_scan = 20;
+    double fov_deg = 0.5;
+    double background_resolution_m = 1.0;
+    int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
+    double max_diagonal_m = 1.0;     ///< occlusion removal
+    /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000:
+    /// read as millimetres, a jump of more than 1 m in range between frames.
+    double max_range_jump_m = 1.0;
+    int history = 5;                 ///< centres the FIR predictor fits
+    double kalman_gate_m = 2.0;      ///< Kalman variant: clusters farther from the prediction are ignored
+    double kalman_accel_mps2 = 5.0;  ///< white-acceleration process noise
+    double kalman_measurement_m = 0.1;
+    /// Boxes drawn around a cluster get at least this extent on every axis (0: the cluster's own
+    /// extent, as Algorithm 1 draws them). Returns lie on beam axes, up to half a line pitch
+    /// (0.13 m at 600 m) from a 0.06 m-tall drone, so a box around them alone may miss it.
+    double min_box_m = 0.0;
+};
+
+/// The target in one frame.
+struct Detection {
+    std::uint64_t frame = 0;
+    double time_s = 0.0;
+    bool found = false;       ///< a box (from a cluster or a prediction)
+    bool predicted = false;   ///< from the history, no cluster accepted
+    sensor_model::OrientedBox box;
+    std::size_t points = 0;   ///< in the accepted cluster
+    double radius_m = 0.0;    ///< clustering radius used
+};
+
+class TargetTracker {
+public:
+    TargetTracker(const DetectorConfig& config, const Points& background_map);
+    ~TargetTracker();
+
+    Detection process(std::uint64_t frame, double time_s, const Points& points);
+    /// Re-initialises the history on a known box (VOT's reset after a failure).
+    void reset(std::uint64_t frame, double time_s, const sensor_model::OrientedBox& truth);
+
+private:
+    struct Kalman;
+    std::optional<Eigen::Vector3d> fir_prediction(double time_s) const;
+    void remember(double time_s, const sensor_model::OrientedBox& box);
+
+    DetectorConfig config_;
+    BackgroundSubtractor background_;
+    std::deque<std::pair<double, Eigen::Vector3d>> history_;  ///< (time, centre) of accepted boxes
+    Eigen::Vector3d last_size_ = Eigen::Vector3d::Constant(0.3);
+    std::unique_ptr<Kalman> kalman_;
+};
+
+}  // namespace ladarsim::detect

@@ -1,0 +1,24 @@
+#include "ladarsim/detect/point_cloud.h"
+
+#include <Eigen/Geometry>
+
+namespace ladarsim::detect {
+
+Points positions_of(const std::vector<sensor_model::Return>& returns) {
+    Points p;
+    p.reserve(returns.size());
+    for (const auto& r : returns) p.push_back(r.position_sensor);
+    return p;
+}
+
+sensor_model::OrientedBox bounding_box(const Points& points) {
+    Eigen::AlignedBox3f box;
+    for (const auto& p : points) box.extend(p);
+    sensor_model::OrientedBox b;
+    if (box.isEmpty()) return b;
+    b.centre = box.center().cast<double>();
+    b.size = box.sizes().cast<double>();
+    return b;
+}
+
+}  // namespace ladarsim::detect

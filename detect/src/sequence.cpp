@@ -1,0 +1,170 @@
+#include "ladarsim/detect/sequence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ladarsim/detect/box_metrics.h"
+#include "ladarsim/detect/expected_overlap.h"
+#include "ladarsim/scene/input_error.h"
+#include "ladarsim/sensor_model/pcd_file.h"
+
+namespace ladarsim::detect {
+
+Sequence load_sequence(const std::filesystem::path& dir) {
+    Sequence s;
+    std::error_code ec;
+    const auto frames_dir = dir / "frames";
+    if (!std::filesystem::is_directory(frames_dir, ec)) throw InputError(dir.string(), "frames", "no frames/ directory");
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(frames_dir))
+        if (e.path().extension() == ".pcd") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    if (files.empty()) throw InputError(frames_dir.string(), "frames", "no .pcd frames");
+    if (std::filesystem::exists(dir / "ground_truth.json")) s.truth = sensor_model::read_ground_truth_json(dir / "ground_truth.json");
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        s.frames.push_back(positions_of(sensor_model::read_frame_pcd(files[i])));
+        s.frame_index.push_back(i < s.truth.size() ? s.truth[i].index : i);
+        // Without ground truth, frames are taken 1/20 s apart (the paper's frame rate).
+        s.time_s.push_back(i < s.truth.size() ? 0.5 * (s.truth[i].start_time_s + s.truth[i].end_time_s) : i / 20.0);
+    }
+    if (std::filesystem::exists(dir / "background.pcd")) s.background = positions_of(sensor_model::read_frame_pcd(dir / "background.pcd"));
+    return s;
+}
+
+std::optional<std::uint32_t> default_target(const Sequence& s) {
+    for (const auto& f : s.truth)
+        for (const auto& o : f.objects)
+            if (o.object_class == "drone") return o.object_id;
+    return std::nullopt;
+}
+
+std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target) {
+    if (i >= s.truth.size()) return std::nullopt;
+    for (const auto& o : s.truth[i].objects) {
+        if (o.object_id != target) continue;
+        const auto& b = o.box_sensor;
+        Eigen::AlignedBox3d box;
+        for (int k = 0; k < 8; ++k) {
+            const Eigen::Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
+            box.extend(b.centre + b.orientation * corner.cwiseProduct(b.size));
+        }
+        sensor_model::OrientedBox out;
+        out.centre = box.center();
+        out.size = box.sizes();
+        return out;
+    }
+    return std::nullopt;
+}
+
+std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config) {
+    TargetTracker tracker(config, s.background);
+    std::vector<Detection> out;
+    for (std::size_t i = 0; i < s.frames.size(); ++i) out.push_back(tracker.process(s.frame_index[i], s.time_s[i], s.frames[i]));
+    return out;
+}
+
+SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target) {
+    constexpr std::size_t kSkipAfterFailure = 5;  // VOT: re-initialise five frames after a failure
+    SupervisedRun run;
+    TargetTracker tracker(config, s.background);
+    std::size_t reinit_at = 0;
+    for (std::size_t i = 0; i < s.frames.size(); ++i) {
+        const auto truth = truth_box(s, i, target);
+        if (!truth) throw InputError("ground_truth.json", "frames[" + std::to_string(i) + "]", "no box for the target");
+        if (i == reinit_at) {
+            tracker.reset(s.frame_index[i], s.time_s[i], *truth);
+            run.iou.push_back(1.0);
+            run.initialised.push_back(true);
+            continue;
+        }
+        if (i < reinit_at) {
+            run.iou.push_back(0.0);
+            run.initialised.push_back(false);
+            continue;
+        }
+        const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i]);
+        const double iou = d.found ? axis_aligned_iou(d.box, *truth) : 0.0;
+        run.iou.push_back(iou);
+        run.initialised.push_back(false);
+        if (iou <= 0.0) {
+            ++run.failures;
+            reinit_at = i + kSkipAfterFailure;
+        }
+    }
+    return run;
+}
+
+nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRun& supervised,
+                        std::uint32_t target, std::pair<int, int> interval) {
+    nlohmann::json per_frame = nlohmann::json::array();
+    double l2_sum = 0.0, iou_sum = 0.0;
+    int l2_count = 0, lost = 0;
+    std::vector<double> ious, l2s;
+    for (std::size_t i = 0; i < detections.size(); ++i) {
+        const auto truth = truth_box(s, i, target);
+        if (!truth) throw InputError("ground_truth.json", "frames[" + std::to_string(i) + "]", "no box for the target");
+        const Detection& d = detections[i];
+        const double iou = d.found ? axis_aligned_iou(d.box, *truth) : 0.0;
+        const double l2 = d.found ? centre_distance_m(d.box, *truth) : std::numeric_limits<double>::infinity();
+        iou_sum += iou;
+        ious.push_back(iou);
+        l2s.push_back(l2);
+        if (d.found) {
+            l2_sum += l2;
+            ++l2_count;
+        }
+        if (iou <= 0.0) ++lost;
+        per_frame.push_back({{"frame", d.frame}, {"found", d.found}, {"predicted", d.predicted}, {"iou", iou},
+                             {"l2_m", d.found ? nlohmann::json(l2) : nlohmann::json(nullptr)},
+                             {"supervised_iou", supervised.iou[i]}, {"initialised", static_cast<bool>(supervised.initialised[i])}});
+    }
+    const auto n = static_cast<double>(detections.size());
+    // One-pass success (fraction of frames with IoU >= t, 21 thresholds) and precision (L2 <= d).
+    nlohmann::json success = nlohmann::json::array(), precision = nlohmann::json::object();
+    double auc = 0.0;
+    for (int k = 0; k <= 20; ++k) {
+        const double t = k / 20.0;
+        const double fraction = std::count_if(ious.begin(), ious.end(), [&](double v) { return v >= t && v > 0.0; }) / n;
+        success.push_back({{"threshold", t}, {"fraction", fraction}});
+        auc += fraction / 21.0;
+    }
+    for (double d : {0.2, 0.5, 1.0, 2.0})
+        precision[std::to_string(d).substr(0, 3) + "_m"] = std::count_if(l2s.begin(), l2s.end(), [&](double v) { return v <= d; }) / n;
+    const auto fragments = fragments_of(supervised.iou, supervised.initialised);
+    return {{"target", target},
+            {"frames", detections.size()},
+            {"mean_l2_m", l2_count ? nlohmann::json(l2_sum / l2_count) : nlohmann::json(nullptr)},
+            {"mean_iou", iou_sum / n},
+            {"frames_lost", lost},
+            {"failures", supervised.failures},
+            {"eao", expected_average_overlap(fragments, interval.first, interval.second)},
+            {"eao_interval", {interval.first, interval.second}},
+            {"success_auc", auc},
+            {"success", success},
+            {"precision", precision},
+            {"per_frame", per_frame}};
+}
+
+nlohmann::json to_json(const Detection& d) {
+    return {{"frame", d.frame}, {"time_s", d.time_s}, {"found", d.found}, {"predicted", d.predicted},
+            {"centre_m", {d.box.centre.x(), d.box.centre.y(), d.box.centre.z()}},
+            {"size_m", {d.box.size.x(), d.box.size.y(), d.box.size.z()}}, {"points", d.points}, {"radius_m", d.radius_m}};
+}
+
+Detection detection_from_json(const nlohmann::json& j) {
+    Detection d;
+    d.frame = j.at("frame").get<std::uint64_t>();
+    d.time_s = j.at("time_s").get<double>();
+    d.found = j.at("found").get<bool>();
+    d.predicted = j.at("predicted").get<bool>();
+    const auto& c = j.at("centre_m");
+    const auto& z = j.at("size_m");
+    d.box.centre = {c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()};
+    d.box.size = {z.at(0).get<double>(), z.at(1).get<double>(), z.at(2).get<double>()};
+    d.points = j.at("points").get<std::size_t>();
+    d.radius_m = j.at("radius_m").get<double>();
+    return d;
+}
+
+}  // namespace ladarsim::detect

@@ -1,0 +1,154 @@
+#include "ladarsim/detect/tracker.h"
+
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+namespace ladarsim::detect {
+
+Method method_from_string(const std::string& name) {
+    if (name == "rbnn") return Method::rbnn;
+    if (name == "vrbnn") return Method::vrbnn;
+    if (name == "kalman") return Method::kalman;
+    throw std::invalid_argument("unknown detection method \"" + name + "\" (rbnn, vrbnn or kalman)");
+}
+
+std::string to_string(Method m) { return m == Method::rbnn ? "rbnn" : m == Method::vrbnn ? "vrbnn" : "kalman"; }
+
+/// Constant-velocity Kalman filter on the box centre, white acceleration noise.
+struct TargetTracker::Kalman {
+    Eigen::Matrix<double, 6, 1> x = Eigen::Matrix<double, 6, 1>::Zero();
+    Eigen::Matrix<double, 6, 6> p = Eigen::Matrix<double, 6, 6>::Identity() * 100.0;
+    double time_s = 0.0;
+    bool started = false;
+
+    void predict(double t, double accel) {
+        const double dt = t - time_s;
+        Eigen::Matrix<double, 6, 6> f = Eigen::Matrix<double, 6, 6>::Identity();
+        f.topRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * dt;
+        Eigen::Matrix<double, 6, 6> q = Eigen::Matrix<double, 6, 6>::Zero();
+        const double a2 = accel * accel;
+        q.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * a2 * dt * dt * dt * dt / 4.0;
+        q.topRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * a2 * dt * dt * dt / 2.0;
+        q.bottomLeftCorner<3, 3>() = q.topRightCorner<3, 3>();
+        q.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * a2 * dt * dt;
+        x = f * x;
+        p = f * p * f.transpose() + q;
+        time_s = t;
+    }
+
+    void update(const Eigen::Vector3d& z, double sigma) {
+        Eigen::Matrix<double, 3, 6> h = Eigen::Matrix<double, 3, 6>::Zero();
+        h.leftCols<3>() = Eigen::Matrix3d::Identity();
+        const Eigen::Matrix3d s = h * p * h.transpose() + Eigen::Matrix3d::Identity() * sigma * sigma;
+        const Eigen::Matrix<double, 6, 3> k = p * h.transpose() * s.inverse();
+        x += k * (z - h * x);
+        p = (Eigen::Matrix<double, 6, 6>::Identity() - k * h) * p;
+    }
+
+    void start(double t, const Eigen::Vector3d& z) {
+        x.setZero();
+        x.head<3>() = z;
+        p = Eigen::Matrix<double, 6, 6>::Identity();
+        p.bottomRightCorner<3, 3>() *= 400.0;  // velocity unknown: +-20 m/s
+        time_s = t;
+        started = true;
+    }
+};
+
+TargetTracker::TargetTracker(const DetectorConfig& config, const Points& background_map)
+    : config_(config), background_(background_map, config.background_resolution_m), kalman_(std::make_unique<Kalman>()) {}
+
+TargetTracker::~TargetTracker() = default;
+
+std::optional<Eigen::Vector3d> TargetTracker::fir_prediction(double time_s) const {
+    if (history_.empty()) return std::nullopt;
+    if (history_.size() == 1) return history_.back().second;
+    // Least-squares line through the history, evaluated at time_s: an FIR filter whose taps
+    // follow from the (time, centre) samples.
+    double mean_t = 0.0;
+    Eigen::Vector3d mean_c = Eigen::Vector3d::Zero();
+    for (const auto& [t, c] : history_) {
+        mean_t += t;
+        mean_c += c;
+    }
+    mean_t /= static_cast<double>(history_.size());
+    mean_c /= static_cast<double>(history_.size());
+    double stt = 0.0;
+    Eigen::Vector3d stc = Eigen::Vector3d::Zero();
+    for (const auto& [t, c] : history_) {
+        stt += (t - mean_t) * (t - mean_t);
+        stc += (t - mean_t) * (c - mean_c);
+    }
+    const Eigen::Vector3d velocity = stt > 0.0 ? Eigen::Vector3d(stc / stt) : Eigen::Vector3d::Zero();
+    return mean_c + velocity * (time_s - mean_t);
+}
+
+void TargetTracker::remember(double time_s, const sensor_model::OrientedBox& box) {
+    history_.emplace_back(time_s, box.centre);
+    while (static_cast<int>(history_.size()) > config_.history) history_.pop_front();
+    last_size_ = box.size;
+}
+
+void TargetTracker::reset(std::uint64_t, double time_s, const sensor_model::OrientedBox& truth) {
+    history_.clear();
+    remember(time_s, truth);
+    kalman_->start(time_s, truth.centre);
+}
+
+Detection TargetTracker::process(std::uint64_t frame, double time_s, const Points& points) {
+    Detection d;
+    d.frame = frame;
+    d.time_s = time_s;
+    const Points foreground = background_.subtract(points);
+
+    // calRange: the range of the target the history says we are following.
+    std::optional<Eigen::Vector3d> expected = fir_prediction(time_s);
+    if (config_.method == Method::kalman && kalman_->started) {
+        kalman_->predict(time_s, config_.kalman_accel_mps2);
+        expected = kalman_->x.head<3>();
+    }
+    d.radius_m = config_.method == Method::rbnn || !expected
+                     ? config_.rbnn_radius_m
+                     : vrbnn_radius_m(config_.lambda, config_.h_scan, config_.v_scan, config_.fov_deg, expected->norm(),
+                                      config_.bias_m);
+
+    const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
+    std::vector<Cluster> candidates =
+        plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, static_cast<std::size_t>(config_.min_neighbours) + 1);
+
+    // The candidate: nearest the expected position when there is one, else the largest.
+    const Cluster* chosen = nullptr;
+    double best = std::numeric_limits<double>::infinity();
+    for (const Cluster& c : candidates) {
+        const double distance = expected ? (c.box.centre - *expected).norm() : -static_cast<double>(c.points.size());
+        if (distance < best) {
+            best = distance;
+            chosen = &c;
+        }
+    }
+    if (chosen && expected) {
+        const bool jump = config_.method == Method::kalman ? best > config_.kalman_gate_m
+                                                           : std::abs(chosen->box.centre.norm() - expected->norm()) > config_.max_range_jump_m;
+        if (jump) chosen = nullptr;
+    }
+    if (chosen) {
+        d.found = true;
+        d.box = chosen->box;
+        d.box.size = d.box.size.cwiseMax(Eigen::Vector3d::Constant(config_.min_box_m));
+        d.points = chosen->points.size();
+        remember(time_s, d.box);
+        if (config_.method == Method::kalman) {
+            if (kalman_->started) kalman_->update(d.box.centre, config_.kalman_measurement_m);
+            else kalman_->start(time_s, d.box.centre);
+        }
+    } else if (expected) {
+        d.found = true;
+        d.predicted = true;
+        d.box.centre = *expected;
+        d.box.size = last_size_;
+    }
+    return d;
+}
+
+}  // namespace ladarsim::detect
