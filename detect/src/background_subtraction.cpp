@@ -1,40 +1,53 @@
 #include "ladarsim/detect/background_subtraction.h"
 
+#include <cmath>
+#include <array>
+#include <cstdint>
 #include <stdexcept>
-
-#include <pcl/octree/octree_search.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
+#include <unordered_set>
 
 namespace ladarsim::detect {
 
-struct BackgroundSubtractor::Octree {
-    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
-    pcl::octree::OctreePointCloudSearch<pcl::PointXYZ> tree;
-    explicit Octree(double resolution) : tree(resolution) {}
+/// Voxels of side `resolution` holding a map point, dilated by one voxel in every direction.
+struct BackgroundSubtractor::VoxelSet {
+    std::unordered_set<std::uint64_t> near_map;
+    double inverse_resolution = 1.0;
+
+    std::array<std::int64_t, 3> voxel(const Eigen::Vector3f& p) const {
+        return {static_cast<std::int64_t>(std::floor(p.x() * inverse_resolution)),
+                static_cast<std::int64_t>(std::floor(p.y() * inverse_resolution)),
+                static_cast<std::int64_t>(std::floor(p.z() * inverse_resolution))};
+    }
+    /// 21 bits per axis: +-1e6 voxels, +-1000 km at 1 m.
+    static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+        constexpr std::int64_t kOffset = 1 << 20;
+        constexpr std::uint64_t kMask = (1u << 21) - 1;
+        return (static_cast<std::uint64_t>(x + kOffset) & kMask) << 42 | (static_cast<std::uint64_t>(y + kOffset) & kMask) << 21 |
+               (static_cast<std::uint64_t>(z + kOffset) & kMask);
+    }
 };
 
 BackgroundSubtractor::BackgroundSubtractor(const Points& map, double resolution_m) : resolution_(resolution_m) {
     if (!(resolution_m > 0.0)) throw std::invalid_argument("background subtraction resolution must be positive");
-    octree_ = std::make_unique<Octree>(resolution_m);
-    for (const auto& p : map) octree_->cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-    if (!octree_->cloud->empty()) {
-        octree_->tree.setInputCloud(octree_->cloud);
-        octree_->tree.addPointsFromInputCloud();
+    voxels_ = std::make_unique<VoxelSet>();
+    voxels_->inverse_resolution = 1.0 / resolution_m;
+    std::unordered_set<std::uint64_t> occupied;
+    for (const auto& p : map) {
+        const auto v = voxels_->voxel(p);
+        if (!occupied.insert(VoxelSet::key(v[0], v[1], v[2])).second) continue;
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) voxels_->near_map.insert(VoxelSet::key(v[0] + dx, v[1] + dy, v[2] + dz));
     }
 }
 
 BackgroundSubtractor::~BackgroundSubtractor() = default;
 
 Points BackgroundSubtractor::subtract(const Points& frame) const {
-    if (octree_->cloud->empty()) return frame;
-    double min_x, min_y, min_z, max_x, max_y, max_z;
-    octree_->tree.getBoundingBox(min_x, min_y, min_z, max_x, max_y, max_z);
     Points kept;
     for (const auto& p : frame) {
-        const bool inside = p.x() >= min_x && p.x() <= max_x && p.y() >= min_y && p.y() <= max_y && p.z() >= min_z &&
-                            p.z() <= max_z;
-        if (!inside || !octree_->tree.isVoxelOccupiedAtPoint(pcl::PointXYZ(p.x(), p.y(), p.z()))) kept.push_back(p);
+        const auto v = voxels_->voxel(p);
+        if (!voxels_->near_map.contains(VoxelSet::key(v[0], v[1], v[2]))) kept.push_back(p);
     }
     return kept;
 }
