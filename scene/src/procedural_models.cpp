@@ -88,6 +88,35 @@ public:
         convex_piece(v, t, material);
     }
 
+    /// An ellipsoid of semi-axes `radii` about `centre` (a UV sphere, `segments` around).
+    void ellipsoid(const Eigen::Vector3d& centre, const Eigen::Vector3d& radii, int segments, std::uint32_t material) {
+        std::vector<Eigen::Vector3d> v;
+        std::vector<std::array<std::uint32_t, 3>> t;
+        const int rings = segments / 2;
+        v.push_back(centre + Eigen::Vector3d(0, 0, radii.z()));
+        for (int r = 1; r < rings; ++r) {
+            const double polar = kPi * r / rings;
+            for (int k = 0; k < segments; ++k) {
+                const double a = 2.0 * kPi * k / segments;
+                v.push_back(centre + radii.cwiseProduct(Eigen::Vector3d(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a),
+                                                                        std::cos(polar))));
+            }
+        }
+        v.push_back(centre - Eigen::Vector3d(0, 0, radii.z()));
+        const auto n = static_cast<std::uint32_t>(segments);
+        const auto ring = [&](int r, std::uint32_t k) { return 1 + static_cast<std::uint32_t>(r - 1) * n + k % n; };
+        const auto bottom = static_cast<std::uint32_t>(v.size() - 1);
+        for (std::uint32_t k = 0; k < n; ++k) {
+            t.push_back({0, ring(1, k), ring(1, k + 1)});
+            for (int r = 1; r + 1 < rings; ++r) {
+                t.push_back({ring(r, k), ring(r + 1, k), ring(r + 1, k + 1)});
+                t.push_back({ring(r, k), ring(r + 1, k + 1), ring(r, k + 1)});
+            }
+            t.push_back({bottom, ring(rings - 1, k + 1), ring(rings - 1, k)});
+        }
+        convex_piece(v, t, material);
+    }
+
     Model take() { return std::move(model_); }
     Model& model() { return model_; }
 
@@ -168,6 +197,66 @@ Model make_tree(double height_m) {
     return b.take();
 }
 
+Model make_bird(double wingspan_m) {
+    ModelBuilder b("procedural:bird");
+    // Feathers 0.2-0.6 at 1550 nm: a mid value for a grey-brown bird.
+    const std::uint32_t feathers = b.material("feathers", 0.35);
+    const double s = wingspan_m;
+    b.ellipsoid(Eigen::Vector3d::Zero(), {0.22 * s, 0.06 * s, 0.06 * s}, 12, feathers);
+    for (double side : {-1.0, 1.0}) {
+        Eigen::Affine3d wing = Eigen::Affine3d::Identity();
+        wing.translate(Eigen::Vector3d(0.0, side * 0.27 * s, 0.02 * s));
+        b.box(wing, {0.07 * s, 0.23 * s, 0.005 * s}, feathers);
+    }
+    return b.take();
+}
+
+Model make_light_aircraft() {
+    ModelBuilder b("procedural:light-aircraft");
+    const std::uint32_t paint = b.material("white_paint", 0.6);
+    Eigen::Affine3d fuselage = Eigen::Affine3d::Identity();
+    b.box(fuselage, {3.6, 0.55, 0.65}, paint);
+    Eigen::Affine3d wing = Eigen::Affine3d::Identity();
+    wing.translate(Eigen::Vector3d(0.6, 0.0, 0.5));
+    b.box(wing, {0.75, 5.5, 0.08}, paint);
+    Eigen::Affine3d tail = Eigen::Affine3d::Identity();
+    tail.translate(Eigen::Vector3d(-3.2, 0.0, 0.2));
+    b.box(tail, {0.45, 1.7, 0.05}, paint);
+    Eigen::Affine3d fin = Eigen::Affine3d::Identity();
+    fin.translate(Eigen::Vector3d(-3.2, 0.0, 0.9));
+    b.box(fin, {0.45, 0.04, 0.7}, paint);
+    return b.take();
+}
+
+Model make_airliner() {
+    ModelBuilder b("procedural:airliner");
+    const std::uint32_t paint = b.material("white_paint", 0.6);
+    // A320-like: 37.6 m long, 34 m span, 4 m fuselage.
+    b.ellipsoid(Eigen::Vector3d::Zero(), {18.8, 2.0, 2.1}, 24, paint);
+    Eigen::Affine3d wing = Eigen::Affine3d::Identity();
+    wing.translate(Eigen::Vector3d(1.0, 0.0, -0.8));
+    b.box(wing, {2.5, 17.0, 0.25}, paint);
+    Eigen::Affine3d tail = Eigen::Affine3d::Identity();
+    tail.translate(Eigen::Vector3d(-16.0, 0.0, 0.5));
+    b.box(tail, {1.5, 6.0, 0.15}, paint);
+    Eigen::Affine3d fin = Eigen::Affine3d::Identity();
+    fin.translate(Eigen::Vector3d(-16.0, 0.0, 3.5));
+    b.box(fin, {1.6, 0.15, 3.0}, paint);
+    return b.take();
+}
+
+Model make_cloud(double diameter_m, double extinction_per_m) {
+    ModelBuilder b("procedural:cloud");
+    // A lidar ratio of 20 sr (extinction / backscatter) is typical of water clouds.
+    Material water = fog_medium("cloud_water", 1.0);
+    water.extinction_per_m = extinction_per_m;
+    water.backscatter_per_m_sr = extinction_per_m / 20.0;
+    const std::uint32_t m = b.material(water.name, 0.0);
+    b.model().materials[m] = water;
+    b.ellipsoid(Eigen::Vector3d::Zero(), {0.5 * diameter_m, 0.5 * diameter_m, 0.3 * diameter_m}, 16, m);
+    return b.take();
+}
+
 void write_default_assets(const std::filesystem::path& dir) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
@@ -176,6 +265,11 @@ void write_default_assets(const std::filesystem::path& dir) {
     write_gltf(make_terrain(), dir / "terrain.glb");
     write_gltf(make_box_building(20.0, 12.0, 15.0), dir / "building.glb");
     write_gltf(make_tree(8.0), dir / "tree.glb");
+    write_gltf(make_box_building(30.0, 30.0, 80.0), dir / "tower.glb");
+    write_gltf(make_bird(0.4), dir / "bird.glb");
+    write_gltf(make_light_aircraft(), dir / "light_aircraft.glb");
+    write_gltf(make_airliner(), dir / "airliner.glb");
+    write_gltf(make_cloud(60.0, 0.03), dir / "cloud.glb");
 }
 
 }  // namespace ladarsim::scene

@@ -104,6 +104,14 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
         for (Echo& e : s.echoes) e.energy_j *= factor;
     }
     std::erase_if(surfaces, [](const BeamSurface& s) { return s.echoes.empty(); });
+    // A volume backscatters continuously along its depth; its free-path samples stand for that
+    // distribution, so they enter the waveform as one echo of their total energy, stretched by
+    // their spread, rather than as a comb of separate pulses.
+    for (BeamSurface& s : surfaces) {
+        if (s.source != ReturnSource::volume || s.echoes.size() < 2) continue;
+        const auto [range, spread] = range_moments(s.echoes);
+        s.echoes = {Echo{range, total_energy(s.echoes), s.echoes.front().surface, spread}};
+    }
 
     std::vector<DetectedReturn> returns;
     RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);

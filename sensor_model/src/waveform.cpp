@@ -2,50 +2,48 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
+
+#include <unsupported/Eigen/FFT>
 
 #include "ladarsim/sensor_model/physical_constants.h"
 
 namespace ladarsim::sensor_model {
 namespace {
 
-/// Blackman-windowed sinc low-pass with cutoff `cutoff` (fraction of the sampling rate), scaled to
-/// unit energy so that white unit-variance input gives unit-variance output. 513 taps keep the
-/// transition band near 5.5 / 513 of the sampling rate (86 MHz at 8 GHz): close enough to the
-/// rectangular band the Rice formula assumes.
-std::vector<double> low_pass_taps(double cutoff, int taps) {
-    std::vector<double> h(static_cast<std::size_t>(taps));
-    const int m = taps - 1;
-    double energy = 0.0;
-    for (int k = 0; k <= m; ++k) {
-        const double x = k - 0.5 * m;
-        const double sinc = x == 0.0 ? 2.0 * cutoff : std::sin(2.0 * std::numbers::pi * cutoff * x) / (std::numbers::pi * x);
-        const double window = 0.42 - 0.5 * std::cos(2.0 * std::numbers::pi * k / m) + 0.08 * std::cos(4.0 * std::numbers::pi * k / m);
-        h[static_cast<std::size_t>(k)] = sinc * window;
-        energy += h[static_cast<std::size_t>(k)] * h[static_cast<std::size_t>(k)];
-    }
-    for (double& v : h) v /= std::sqrt(energy);
-    return h;
-}
-
 constexpr double kWindowSigmas = 6.0;  // pulse tails kept on each side of a cluster of echoes
 
 }  // namespace
 
 WaveformReceiver::WaveformReceiver(const ApdReceiver& apd, double pulse_fwhm_s, double bin_s)
-    : apd_(apd), pulse_(PulseShape::of(pulse_fwhm_s)), fwhm_s_(pulse_fwhm_s), bin_s_(bin_s),
-      taps_(low_pass_taps(std::min(0.5, apd.bandwidth_hz() * bin_s), 513)) {}
+    : apd_(apd), pulse_(PulseShape::of(pulse_fwhm_s)), fwhm_s_(pulse_fwhm_s), bin_s_(bin_s) {}
+
+PulseShape WaveformReceiver::shape_of(const Echo& e) const {
+    return e.spread_m > 0.0 ? PulseShape::of(fwhm_s_, 2.0 * e.spread_m / kSpeedOfLight_mps) : pulse_;
+}
 
 std::vector<double> WaveformReceiver::band_limited_noise(std::size_t n, RandomSequence& rng) const {
-    const std::size_t taps = taps_.size();
-    std::vector<double> white(n + taps - 1);
-    for (double& w : white) w = rng.normal();
-    std::vector<double> out(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        double acc = 0.0;
-        for (std::size_t k = 0; k < taps; ++k) acc += taps_[k] * white[i + k];
-        out[i] = acc;
+    // Spectral synthesis: independent Gaussian Fourier coefficients on every frequency up to the
+    // bandwidth, none above, and one inverse FFT. The spectrum is exactly rectangular (what the Rice
+    // rate assumes) and the cost O(N log N), against O(N x taps) for a long low-pass FIR.
+    std::size_t size = 64;
+    while (size < n) size *= 2;
+    const auto top = static_cast<std::size_t>(std::floor(apd_.bandwidth_hz() * bin_s_ * static_cast<double>(size)));
+    const std::size_t bands = std::min(top, size / 2 - 1);
+    std::vector<std::complex<double>> spectrum(size, 0.0);
+    spectrum[0] = rng.normal();
+    for (std::size_t j = 1; j <= bands; ++j) {
+        spectrum[j] = std::complex<double>(rng.normal(), rng.normal()) / std::sqrt(2.0);
+        spectrum[size - j] = std::conj(spectrum[j]);
     }
+    std::vector<std::complex<double>> samples;
+    Eigen::FFT<double> fft;
+    fft.inv(samples, spectrum);
+    // Eigen's inverse divides by N: each sample has variance (1 + 2 bands) / N^2.
+    const double scale = static_cast<double>(size) / std::sqrt(1.0 + 2.0 * static_cast<double>(bands));
+    std::vector<double> out(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = samples[i].real() * scale;
     return out;
 }
 
@@ -54,7 +52,9 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
     std::sort(sorted.begin(), sorted.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
     std::vector<DetectedPulse> pulses;
     const double to_time = 2.0 / kSpeedOfLight_mps;
-    const double margin_s = kWindowSigmas * pulse_.sigma_s;
+    double widest = pulse_.sigma_s;
+    for (const Echo& e : sorted) widest = std::max(widest, shape_of(e).sigma_s);
+    const double margin_s = kWindowSigmas * widest;
     for (std::size_t first = 0; first < sorted.size();) {
         std::size_t last = first + 1;
         while (last < sorted.size() && (sorted[last].range_m - sorted[last - 1].range_m) * to_time < 2.0 * margin_s) ++last;
@@ -74,12 +74,13 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     std::vector<double> power(bins, 0.0);
     for (const Echo& e : echoes) {
         const double te = e.range_m * to_time;
+        const PulseShape shape = shape_of(e);
         // Only bins within the kept tails of this echo.
-        const double lo = (te - kWindowSigmas * pulse_.sigma_s - t0_s) / bin_s_;
-        const double hi = (te + kWindowSigmas * pulse_.sigma_s - t0_s) / bin_s_;
+        const double lo = (te - kWindowSigmas * shape.sigma_s - t0_s) / bin_s_;
+        const double hi = (te + kWindowSigmas * shape.sigma_s - t0_s) / bin_s_;
         const auto k0 = static_cast<std::size_t>(std::max(0.0, std::floor(lo)));
         const auto k1 = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, std::ceil(hi))));
-        for (std::size_t k = k0; k <= k1; ++k) power[k] += e.energy_j * pulse_.at(t0_s + k * bin_s_ - te);
+        for (std::size_t k = k0; k <= k1; ++k) power[k] += e.energy_j * shape.at(t0_s + k * bin_s_ - te);
     }
     const std::vector<double> n = noise ? band_limited_noise(bins, *noise) : std::vector<double>(bins, 0.0);
     std::vector<double> y(bins);
@@ -92,6 +93,8 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     std::uint32_t surfaces = 0;
     for (const Echo& e : echoes) surfaces = std::max(surfaces, e.surface + 1);
     std::vector<double> contribution(surfaces);
+    // The 50 % crossing of a pulse is searched back no further than where the previous one ended.
+    std::size_t searched_to = 0;
     auto finish = [&](std::size_t peak) {
         // The sampled maximum misses the true peak by up to half a bin (1 % in height for a 1 ns
         // pulse); a parabola through the logarithms of the three samples about it is exact for a
@@ -109,10 +112,10 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
         // centre lies half a FWHM after it for the Gaussian pulse.
         const double level = 0.5 * peak_value;
         std::size_t k = peak;
-        while (k > 0 && y[k - 1] >= level) --k;
+        while (k > searched_to && y[k - 1] >= level) --k;
         double t_cross;
-        if (k == 0) {
-            t_cross = t0_s;
+        if (k == searched_to) {
+            t_cross = t0_s + static_cast<double>(k) * bin_s_;
         } else {
             const double f = (level - y[k - 1]) / (y[k] - y[k - 1]);
             t_cross = t0_s + (static_cast<double>(k - 1) + f) * bin_s_;
@@ -120,7 +123,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
         const double t_peak = t0_s + (static_cast<double>(peak) + offset) * bin_s_;
         // Which surface made it: the largest noise-free contribution at the peak.
         std::fill(contribution.begin(), contribution.end(), 0.0);
-        for (const Echo& e : echoes) contribution[e.surface] += e.energy_j * pulse_.at(t_peak - e.range_m * to_time);
+        for (const Echo& e : echoes) contribution[e.surface] += e.energy_j * shape_of(e).at(t_peak - e.range_m * to_time);
         std::uint32_t surface = kNoSurface;
         double best = 0.0;
         for (std::uint32_t i = 0; i < surfaces; ++i) {
@@ -141,13 +144,17 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
         out.push_back(p);
     };
 
-    // Excursions above the threshold; inside one, a dip below half its peak followed by a rise to
-    // more than twice the dip (and 3 noise sigmas above it) starts a new pulse.
+    // Excursions: one starts when the signal crosses the threshold and ends when it falls below
+    // half of it (hysteresis, so that noise on a slow edge, such as a cloud's, does not re-trigger
+    // at every wiggle). Inside one, a dip below half its peak followed by a rise to more than twice
+    // the dip (and 3 noise sigmas above it) starts a new pulse.
+    const double release = 0.5 * threshold;
     bool inside = false, in_valley = false;
     std::size_t peak = 0, valley = 0;
     for (std::size_t k = 0; k < bins; ++k) {
-        if (y[k] <= threshold) {
+        if (inside ? y[k] <= release : y[k] <= threshold) {
             if (inside) finish(peak);
+            if (inside) searched_to = k;
             inside = in_valley = false;
             continue;
         }
@@ -162,6 +169,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
             valley = k;
         } else if (y[k] > 2.0 * y[valley] && y[k] - y[valley] > 3.0 * floor_noise) {
             finish(peak);
+            searched_to = valley;
             peak = k;
             in_valley = false;
         }

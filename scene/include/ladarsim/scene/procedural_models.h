@@ -24,7 +24,22 @@ Model make_box_building(double length_m, double width_m, double height_m);
 /// A trunk and a conical crown, base on z = 0: bark 0.25, foliage 0.3.
 Model make_tree(double height_m);
 
-/// Writes quadcopter.glb, terrain.glb, building.glb (20 x 12 x 15 m) and tree.glb (8 m) into `dir`.
+/// A bird of the given wingspan (0.2-0.6 m): an ellipsoid body and two flat wings; feathers 0.35.
+Model make_bird(double wingspan_m);
+
+/// A light aircraft, 7.2 m long, 11 m span: box fuselage, wing, tailplane and fin; white paint 0.6.
+Model make_light_aircraft();
+
+/// An airliner the size of an A320 (37.6 m long, 34 m span); white paint 0.6.
+Model make_airliner();
+
+/// A cloud: a closed, flattened ellipsoid (diameter x diameter x 0.6 diameter) whose material is a
+/// volume medium of the given extinction and a lidar ratio of 20 sr (water cloud).
+Model make_cloud(double diameter_m, double extinction_per_m);
+
+/// Writes quadcopter.glb, terrain.glb, building.glb (20 x 12 x 15 m), tree.glb (8 m),
+/// tower.glb (30 x 30 x 80 m), bird.glb (0.4 m), light_aircraft.glb, airliner.glb and cloud.glb
+/// (60 m, 30 /km) into `dir`.
 void write_default_assets(const std::filesystem::path& dir);
 
 }  // namespace ladarsim::scene

@@ -16,6 +16,9 @@ struct Echo {
     double range_m;          ///< as the receiver's clock sees it (folded when ranges fold)
     double energy_j;         ///< optical energy reaching the detector
     std::uint32_t surface;   ///< which surface of the beam it came from
+    /// Standard deviation along the range of a distributed echo (a fog or cloud return), 0 for a
+    /// surface: the pulse it makes is stretched accordingly.
+    double spread_m = 0.0;
 };
 
 inline constexpr std::uint32_t kNoSurface = 0xFFFFFFFFu;
@@ -39,14 +42,15 @@ public:
     /// `noise` null: the noise-free waveform.
     std::vector<DetectedPulse> detect(std::span<const Echo> echoes, RandomSequence* noise) const;
 
-    /// `n` samples of zero-mean, unit-variance Gaussian noise band-limited to the receiver's
-    /// bandwidth (white samples through a windowed-sinc low-pass filter).
+    /// `n` samples of zero-mean, unit-variance Gaussian noise whose spectrum is flat up to the
+    /// receiver's bandwidth and zero above (spectral synthesis with one inverse FFT).
     std::vector<double> band_limited_noise(std::size_t n, RandomSequence& rng) const;
 
     double bin_s() const { return bin_s_; }
     const PulseShape& pulse() const { return pulse_; }
 
 private:
+    PulseShape shape_of(const Echo& e) const;
     void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
                        std::vector<DetectedPulse>& out) const;
 
@@ -54,7 +58,6 @@ private:
     PulseShape pulse_;
     double fwhm_s_;
     double bin_s_;
-    std::vector<double> taps_;
 };
 
 }  // namespace ladarsim::sensor_model
