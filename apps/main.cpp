@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
     detect_cmd->add_option("dir", dataset_dir, "Dataset directory (frames/*.pcd, background.pcd, ground_truth.json)")->required();
     detect_cmd->add_option("--method", method_name, "rbnn | vrbnn | kalman")->check(CLI::IsMember({"rbnn", "vrbnn", "kalman"}));
     detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
-    detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m (V-RBNN uses it until a range is known)");
+    detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m");
     detect_cmd->add_option("--lambda", detector.lambda, "V-RBNN lambda (Algorithm 1: 7)");
     detect_cmd->add_option("--bias", detector.bias_m, "V-RBNN bias, m (Algorithm 1: 0.01)");
     detect_cmd->add_option("--resolution", detector.background_resolution_m, "Background octree voxel, m");
@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
                                   {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda},
                                               {"bias_m", detector.bias_m}, {"resolution_m", detector.background_resolution_m},
                                               {"min_neighbours", detector.min_neighbours}, {"max_diagonal_m", detector.max_diagonal_m},
-                                              {"max_range_jump_m", detector.max_range_jump_m}, {"min_box_m", detector.min_box_m}}},
+                                              {"max_speed_mps", detector.max_speed_mps}, {"min_box_m", detector.min_box_m}}},
                                   {"detections", nlohmann::json::array()}};
             int found = 0, predicted = 0;
             for (const auto& d : detections) {

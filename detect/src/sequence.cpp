@@ -7,6 +7,7 @@
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/scene/input_error.h"
+#include "ladarsim/sensor_model/json_file.h"
 #include "ladarsim/sensor_model/pcd_file.h"
 
 namespace ladarsim::detect {
@@ -27,6 +28,15 @@ Sequence load_sequence(const std::filesystem::path& dir) {
         s.frame_index.push_back(i < s.truth.size() ? s.truth[i].index : i);
         // Without ground truth, frames are taken 1/20 s apart (the paper's frame rate).
         s.time_s.push_back(i < s.truth.size() ? 0.5 * (s.truth[i].start_time_s + s.truth[i].end_time_s) : i / 20.0);
+    }
+    s.boresight.assign(files.size(), std::nullopt);
+    if (std::filesystem::exists(dir / "manifest.json")) {
+        const nlohmann::json manifest = sensor_model::read_json(dir / "manifest.json");
+        const auto& frames = manifest.at("frames");
+        for (std::size_t i = 0; i < files.size() && i < frames.size(); ++i) {
+            const double az = frames[i].at("gimbal_az_rad").get<double>(), el = frames[i].at("gimbal_el_rad").get<double>();
+            s.boresight[i] = Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+        }
     }
     if (std::filesystem::exists(dir / "background.pcd")) s.background = positions_of(sensor_model::read_frame_pcd(dir / "background.pcd"));
     return s;
@@ -60,7 +70,8 @@ std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_
 std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config) {
     TargetTracker tracker(config, s.background);
     std::vector<Detection> out;
-    for (std::size_t i = 0; i < s.frames.size(); ++i) out.push_back(tracker.process(s.frame_index[i], s.time_s[i], s.frames[i]));
+    for (std::size_t i = 0; i < s.frames.size(); ++i)
+        out.push_back(tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]));
     return out;
 }
 
@@ -83,7 +94,7 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
             run.initialised.push_back(false);
             continue;
         }
-        const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i]);
+        const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]);
         const double iou = d.found ? axis_aligned_iou(d.box, *truth) : 0.0;
         run.iou.push_back(iou);
         run.initialised.push_back(false);

@@ -1,5 +1,8 @@
 #include "ladarsim/detect/tracker.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -96,7 +99,8 @@ void TargetTracker::reset(std::uint64_t, double time_s, const sensor_model::Orie
     kalman_->start(time_s, truth.centre);
 }
 
-Detection TargetTracker::process(std::uint64_t frame, double time_s, const Points& points) {
+Detection TargetTracker::process(std::uint64_t frame, double time_s, const Points& points,
+                                 const std::optional<Eigen::Vector3d>& boresight) {
     Detection d;
     d.frame = frame;
     d.time_s = time_s;
@@ -108,28 +112,43 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         kalman_->predict(time_s, config_.kalman_accel_mps2);
         expected = kalman_->x.head<3>();
     }
-    d.radius_m = config_.method == Method::rbnn || !expected
+    // calRange: the predicted target's range; with no history yet, the median range of the
+    // foreground (mostly the target, which the cue put in the field).
+    double cal_range = 0.0;
+    if (expected) {
+        cal_range = expected->norm();
+    } else if (!foreground.empty()) {
+        std::vector<float> ranges;
+        for (const auto& p : foreground) ranges.push_back(p.norm());
+        std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2), ranges.end());
+        cal_range = ranges[ranges.size() / 2];
+    }
+    d.radius_m = config_.method == Method::rbnn
                      ? config_.rbnn_radius_m
-                     : vrbnn_radius_m(config_.lambda, config_.h_scan, config_.v_scan, config_.fov_deg, expected->norm(),
-                                      config_.bias_m);
+                     : vrbnn_radius_m(config_.lambda, config_.h_scan, config_.v_scan, config_.fov_deg, cal_range, config_.bias_m);
 
     const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
     std::vector<Cluster> candidates =
         plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, static_cast<std::size_t>(config_.min_neighbours) + 1);
 
-    // The candidate: nearest the expected position when there is one, else the largest.
+    // The candidate: nearest the expected position when there is one, else nearest the boresight
+    // (the radar cue put the target there), else the largest.
     const Cluster* chosen = nullptr;
     double best = std::numeric_limits<double>::infinity();
     for (const Cluster& c : candidates) {
-        const double distance = expected ? (c.box.centre - *expected).norm() : -static_cast<double>(c.points.size());
+        const double distance = expected    ? (c.box.centre - *expected).norm()
+                                : boresight ? std::acos(std::clamp(c.box.centre.normalized().dot(*boresight), -1.0, 1.0))
+                                            : -static_cast<double>(c.points.size());
         if (distance < best) {
             best = distance;
             chosen = &c;
         }
     }
     if (chosen && expected) {
-        const bool jump = config_.method == Method::kalman ? best > config_.kalman_gate_m
-                                                           : std::abs(chosen->box.centre.norm() - expected->norm()) > config_.max_range_jump_m;
+        const double since_s = history_.empty() ? 0.0 : time_s - history_.back().first;
+        const bool jump = config_.method == Method::kalman
+                              ? best > config_.kalman_gate_m
+                              : std::abs(chosen->box.centre.norm() - expected->norm()) > config_.max_speed_mps * since_s + 0.5;
         if (jump) chosen = nullptr;
     }
     if (chosen) {

@@ -147,3 +147,22 @@ TEST_CASE("write_gltf writes a .glb with the glTF magic and a .gltf that is glTF
     CHECK(j["materials"][0]["name"] == "concrete");
     CHECK(j["materials"][0]["extras"]["ladar"]["reflectance"].get<double>() == 0.35);
 }
+
+TEST_CASE("birds, aircraft and clouds have their specified sizes; clouds are volumes", "[procedural]") {
+    const Model bird = make_bird(0.4);
+    CHECK(bird.bounds().sizes().y() == Approx(0.4).epsilon(0.01));
+    CHECK(closed_and_consistent(bird));
+    const Model light = make_light_aircraft();
+    CHECK(light.bounds().sizes().x() == Approx(7.2).epsilon(0.01));
+    CHECK(light.bounds().sizes().y() == Approx(11.0).epsilon(0.01));
+    const Model airliner = make_airliner();
+    CHECK(airliner.bounds().sizes().x() == Approx(37.6).epsilon(0.01));
+    CHECK(airliner.bounds().sizes().y() == Approx(34.0).epsilon(0.01));
+    const Model cloud = make_cloud(60.0, 0.03);
+    CHECK(cloud.is_volume());
+    CHECK(closed_and_consistent(cloud));
+    CHECK(cloud.bounds().sizes().x() == Approx(60.0).epsilon(0.01));
+    CHECK(cloud.materials[0].backscatter_per_m_sr == Approx(0.03 / 20.0));
+    CHECK(signed_volume(cloud) > 0.0);
+    CHECK_FALSE(make_quadcopter().is_volume());
+}

@@ -18,6 +18,9 @@ struct Sequence {
     std::vector<double> time_s;
     std::vector<Points> frames;
     Points background;  ///< background.pcd; empty when the dataset has none
+    /// Per frame, the unit direction of the gimbal's pointing from manifest.json (the radar cue),
+    /// when the dataset has one.
+    std::vector<std::optional<Eigen::Vector3d>> boresight;
     std::vector<sensor_model::FrameGroundTruth> truth;  ///< empty when there is no ground_truth.json
 };
 

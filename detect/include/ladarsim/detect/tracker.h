@@ -21,7 +21,7 @@ std::string to_string(Method m);
 
 struct DetectorConfig {
     Method method = Method::vrbnn;
-    double rbnn_radius_m = 0.2;      ///< RBNN's fixed radius; also V-RBNN's until a range is known
+    double rbnn_radius_m = 0.2;      ///< RBNN's fixed radius
     double lambda = 7.0;             ///< V-RBNN, Algorithm 1's defaults
     double bias_m = 0.01;
     int h_scan = 150;
@@ -30,9 +30,12 @@ struct DetectorConfig {
     double background_resolution_m = 1.0;
     int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
     double max_diagonal_m = 1.0;     ///< occlusion removal
-    /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000:
-    /// read as millimetres, a jump of more than 1 m in range between frames.
-    double max_range_jump_m = 1.0;
+    /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000.
+    /// Read as millimetres that is 1 m between frames, 20 m/s at 20 Hz, slower than the paper's own
+    /// fast targets. Here: the chosen cluster's range may differ from the FIR prediction's by at
+    /// most this speed times the time since the last accepted centre (plus half a metre), so a
+    /// gap in detections does not lock the target out.
+    double max_speed_mps = 40.0;
     int history = 5;                 ///< centres the FIR predictor fits
     double kalman_gate_m = 2.0;      ///< Kalman variant: clusters farther from the prediction are ignored
     double kalman_accel_mps2 = 5.0;  ///< white-acceleration process noise
@@ -59,7 +62,10 @@ public:
     TargetTracker(const DetectorConfig& config, const Points& background_map);
     ~TargetTracker();
 
-    Detection process(std::uint64_t frame, double time_s, const Points& points);
+    /// `boresight`: the unit direction the sensor was pointing (the radar cue), used to pick the
+    /// target while there is no history; without it the largest cluster is taken.
+    Detection process(std::uint64_t frame, double time_s, const Points& points,
+                      const std::optional<Eigen::Vector3d>& boresight = std::nullopt);
     /// Re-initialises the history on a known box (VOT's reset after a failure).
     void reset(std::uint64_t frame, double time_s, const sensor_model::OrientedBox& truth);
 

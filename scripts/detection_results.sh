@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Renders the paper's four datasets (if not rendered yet), runs every detector configuration on
+# them and prints mean L2, mean IoU and EAO as a markdown table (docs/detection_results.md).
+# Usage: scripts/detection_results.sh [OUT_ROOT]   (default out/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=${1:-out}
+bin=./build/apps/ladarsim
+configs=(
+  "rbnn-0.06|--method rbnn --radius 0.06"
+  "rbnn-0.2|--method rbnn --radius 0.2"
+  "vrbnn-paper|--method vrbnn --lambda 7"
+  "vrbnn|--method vrbnn --lambda 180"
+  "kalman|--method kalman --lambda 180"
+)
+echo "| dataset | detector | mean L2 (m) | mean IoU | EAO | failures | frames lost |"
+echo "|---|---|---|---|---|---|---|"
+for n in 1 2 3 4; do
+  dir=$root/dataset$n
+  [ -f "$dir/manifest.json" ] || $bin render assets/scenarios/dataset$n.json --out "$dir" --quiet >/dev/null
+  for config in "${configs[@]}"; do
+    name=${config%%|*}
+    # shellcheck disable=SC2086
+    $bin detect "$dir" ${config#*|} --out "$dir/detections-$name.json" >/dev/null
+    $bin eval "$dir" --detections "$dir/detections-$name.json" --json "$dir/eval-$name.json" >/dev/null
+    /usr/bin/python3 -c "
+import json, sys
+e = json.load(open('$dir/eval-$name.json'))
+l2 = '-' if e['mean_l2_m'] is None else '%.3f' % e['mean_l2_m']
+print('| $n | $name | %s | %.3f | %.3f | %d | %d |' % (l2, e['mean_iou'], e['eao'], e['failures'], e['frames_lost']))"
+  done
+done
