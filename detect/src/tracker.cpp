@@ -40,6 +40,13 @@ struct TargetTracker::Kalman {
         time_s = t;
     }
 
+    /// Mahalanobis distance of a measurement from the prediction.
+    double mahalanobis(const Eigen::Vector3d& z, double sigma) const {
+        const Eigen::Matrix3d s = p.topLeftCorner<3, 3>() + Eigen::Matrix3d::Identity() * sigma * sigma;
+        const Eigen::Vector3d r = z - x.head<3>();
+        return std::sqrt(r.dot(s.ldlt().solve(r)));
+    }
+
     void update(const Eigen::Vector3d& z, double sigma) {
         Eigen::Matrix<double, 3, 6> h = Eigen::Matrix<double, 3, 6>::Zero();
         h.leftCols<3>() = Eigen::Matrix3d::Identity();
@@ -135,8 +142,10 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
     // (the radar cue put the target there), else the largest.
     const Cluster* chosen = nullptr;
     double best = std::numeric_limits<double>::infinity();
+    const bool gating = config_.method == Method::kalman && kalman_->started;
     for (const Cluster& c : candidates) {
-        const double distance = expected    ? (c.box.centre - *expected).norm()
+        const double distance = gating      ? kalman_->mahalanobis(c.box.centre, config_.kalman_measurement_m)
+                                : expected  ? (c.box.centre - *expected).norm()
                                 : boresight ? std::acos(std::clamp(c.box.centre.normalized().dot(*boresight), -1.0, 1.0))
                                             : -static_cast<double>(c.points.size());
         if (distance < best) {
@@ -146,8 +155,8 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
     }
     if (chosen && expected) {
         const double since_s = history_.empty() ? 0.0 : time_s - history_.back().first;
-        const bool jump = config_.method == Method::kalman
-                              ? best > config_.kalman_gate_m
+        const bool jump = gating
+                              ? best > config_.kalman_gate_sigmas
                               : std::abs(chosen->box.centre.norm() - expected->norm()) > config_.max_speed_mps * since_s + 0.5;
         if (jump) chosen = nullptr;
     }

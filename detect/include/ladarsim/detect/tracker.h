@@ -37,8 +37,11 @@ struct DetectorConfig {
     /// gap in detections does not lock the target out.
     double max_speed_mps = 40.0;
     int history = 5;                 ///< centres the FIR predictor fits
-    double kalman_gate_m = 2.0;      ///< Kalman variant: clusters farther from the prediction are ignored
-    double kalman_accel_mps2 = 5.0;  ///< white-acceleration process noise
+    /// Kalman variant: clusters whose centre lies more than this many standard deviations of the
+    /// innovation from the prediction are ignored (Mahalanobis gating: the gate widens while the
+    /// target goes unseen).
+    double kalman_gate_sigmas = 3.5;
+    double kalman_accel_mps2 = 20.0; ///< white-acceleration process noise (agile drones weave at 2-4 g)
     double kalman_measurement_m = 0.1;
     /// Boxes drawn around a cluster get at least this extent on every axis (0: the cluster's own
     /// extent, as Algorithm 1 draws them). Returns lie on beam axes, up to half a line pitch
