@@ -80,6 +80,7 @@ def main():
         whole.set_xlabel("azimuth (deg, left positive)")
         whole.set_ylabel("elevation (deg)")
         whole.invert_xaxis()
+        close_done = False
         for obj in frame["objects"]:
             if obj["class"] not in targets:
                 continue
@@ -92,7 +93,10 @@ def main():
             whole.annotate(f"{obj['class']} {obj['id']}: {obj['returns']} returns",
                            (caz.min(), cel.max()), color="red", fontsize=8,
                            xytext=(4, 6), textcoords="offset points")
-            # Close-up: cross-range metres about the box centre, looking along the line of sight.
+            # Close-up of the first drone: cross-range metres about its box centre, along the line of sight.
+            if close_done or obj["class"] != "drone":
+                continue
+            close_done = True
             centre = np.array(obj["box_sensor"]["centre_m"])
             sight = centre / np.linalg.norm(centre)
             left = np.cross([0.0, 0.0, 1.0], sight)
