@@ -21,6 +21,7 @@
 #include <spdlog/spdlog.h>
 
 #include "ladarsim/scene/input_error.h"
+#include "ladarsim/scene/las_file.h"
 
 namespace ladarsim::scene {
 
@@ -154,16 +155,6 @@ std::optional<Eigen::Vector3f> plane_normal(const pcl::PointCloud<pcl::PointXYZ>
 BackgroundMap load_background_map(const std::filesystem::path& file, const BackgroundOptions& options,
                                   BackgroundLoadReport* report) {
     const std::string name = file.string();
-    const pcl::PCLPointCloud2 cloud2 = read_pcd(file);
-    const pcl::PCLPointField* fx = find_field(cloud2, "x");
-    const pcl::PCLPointField* fy = find_field(cloud2, "y");
-    const pcl::PCLPointField* fz = find_field(cloud2, "z");
-    if (!fx || !fy || !fz) throw InputError(name, "FIELDS", "needs fields x, y and z");
-    const pcl::PCLPointField* fi = find_field(cloud2, "intensity");
-    const FieldReader x(cloud2, *fx), y(cloud2, *fy), z(cloud2, *fz);
-    std::optional<FieldReader> intensity_of;
-    if (fi) intensity_of.emplace(cloud2, *fi);
-
     BackgroundLoadReport local_report;
     BackgroundLoadReport& rep = report ? *report : local_report;
     rep = BackgroundLoadReport{};
@@ -171,19 +162,32 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
     BackgroundMap map;
     map.source = name;
     std::vector<double> intensity;
-    const std::size_t n_file = std::size_t{cloud2.width} * cloud2.height;
-    map.points_world.reserve(n_file);
-    for (std::size_t i = 0; i < n_file; ++i) {
-        const Eigen::Vector3d p(x(i), y(i), z(i));
+    auto add = [&](const Eigen::Vector3d& p, std::optional<double> i) {
         if (!p.allFinite()) {
             ++rep.nonfinite_dropped;
-            continue;
+            return;
         }
-        map.points_world.push_back(p + options.offset_m);
-        if (intensity_of) {
-            const double v = (*intensity_of)(i);
-            intensity.push_back(std::isfinite(v) ? std::max(v, 0.0) : 0.0);
-        }
+        map.points_world.push_back(options.scale * p + options.offset_m);
+        if (i) intensity.push_back(std::isfinite(*i) ? std::max(*i, 0.0) : 0.0);
+    };
+    if (file.extension() == ".las" || file.extension() == ".LAS") {
+        const LasCloud las = read_las(file);
+        map.points_world.reserve(las.points.size());
+        for (std::size_t i = 0; i < las.points.size(); ++i) add(las.points[i], double(las.intensity[i]));
+    } else {
+        const pcl::PCLPointCloud2 cloud2 = read_pcd(file);
+        const pcl::PCLPointField* fx = find_field(cloud2, "x");
+        const pcl::PCLPointField* fy = find_field(cloud2, "y");
+        const pcl::PCLPointField* fz = find_field(cloud2, "z");
+        if (!fx || !fy || !fz) throw InputError(name, "FIELDS", "needs fields x, y and z");
+        const pcl::PCLPointField* fi = find_field(cloud2, "intensity");
+        const FieldReader x(cloud2, *fx), y(cloud2, *fy), z(cloud2, *fz);
+        std::optional<FieldReader> intensity_of;
+        if (fi) intensity_of.emplace(cloud2, *fi);
+        const std::size_t n_file = std::size_t{cloud2.width} * cloud2.height;
+        map.points_world.reserve(n_file);
+        for (std::size_t i = 0; i < n_file; ++i)
+            add(Eigen::Vector3d(x(i), y(i), z(i)), intensity_of ? std::optional<double>((*intensity_of)(i)) : std::nullopt);
     }
     const std::size_t n = map.points_world.size();
     rep.points_loaded = n;
@@ -247,7 +251,7 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
             map.reflectance[i] = static_cast<float>(options.reflectance_at_max_intensity * intensity[i] / i_max);
         }
     } else {
-        if (!options.reflectance && fi) {
+        if (!options.reflectance && !intensity.empty()) {
             spdlog::warn("{}: every intensity is zero; using reflectance {}", name, kDefaultReflectance);
         }
         map.reflectance.assign(n, static_cast<float>(options.reflectance.value_or(kDefaultReflectance)));

@@ -211,6 +211,7 @@ BackgroundMap read_background(JsonFields& b, const fs::path& scenario_dir) {
     const fs::path file = scenario_dir / b.string("file");
     if (!fs::is_regular_file(file)) b.fail("file", "no such file: " + file.string());
     BackgroundOptions options;
+    options.scale = b.number("scale", 1e-6, 1e6, 1.0);
     options.offset_m = b.vec3("offset_m", Eigen::Vector3d::Zero());
     options.normal_neighbours = static_cast<int>(b.integer("neighbours", 3, 64, options.normal_neighbours));
     if (b.has("reflectance") && b.has("reflectance_at_max_intensity")) {

@@ -11,7 +11,10 @@
 namespace ladarsim::scene {
 
 struct BackgroundOptions {
-    /// Added to every point of the file, so a map in local coordinates can be placed in the world.
+    /// Multiplies every coordinate of the file first: its units in metres (0.3048 for a map in
+    /// international feet).
+    double scale = 1.0;
+    /// Added to every (scaled) point, so a map in local coordinates can be placed in the world.
     Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();
     /// Neighbours (the point itself included) in each local plane fit for the normal.
     int normal_neighbours = 8;
@@ -42,7 +45,8 @@ struct BackgroundLoadReport {
 inline constexpr double kMinRadiusOfMedian = 0.25;
 inline constexpr double kMaxRadiusOfMedian = 3.0;
 
-/// Reads a PCD file (fields x y z, optional intensity; any numeric type) into a BackgroundMap:
+/// Reads a PCD file (fields x y z, optional intensity; any numeric type) or an uncompressed LAS
+/// file (formats 0-3, 6-8; intensity used) into a BackgroundMap:
 /// points offset into the world (double precision), unit normals from a least-squares plane
 /// through the `normal_neighbours` nearest points, flipped to point up (+z) because the map is an
 /// airborne, top-down scan; disc radii as above; reflectance from intensity when the file has it
