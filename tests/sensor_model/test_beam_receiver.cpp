@@ -6,16 +6,11 @@
 
 #include "ladarsim/sensor_model/beam_receiver.h"
 #include "ladarsim/sensor_model/physical_constants.h"
+#include "../support/atmospheres.h"
 
 using namespace ladarsim::sensor_model;
 
 namespace {
-
-Atmosphere vacuum() {
-    Atmosphere a;
-    a.visibility_m = std::numeric_limits<double>::infinity();
-    return a;
-}
 
 BeamSurface one_surface(double range_m, double energy_j, std::uint32_t object_id = 1) {
     BeamSurface s;
@@ -31,7 +26,7 @@ TEST_CASE("false alarms over 1e6 range gates match the Rice rate", "[beam_receiv
     SensorConfig c;
     c.range_folding = false;
     c.max_range_m = 2000.0;  // a 13.3 us gate
-    const BeamReceiver receiver(c, vacuum());
+    const BeamReceiver receiver(c, ladarsim::test::vacuum());
     const int gates = 1'000'000;
     long long alarms = 0;
     for (int g = 0; g < gates; ++g) {
@@ -55,7 +50,7 @@ TEST_CASE("detection probability of a return follows the Gaussian noise at its p
     SensorConfig c;
     c.range_folding = false;
     c.false_alarm_rate_hz = 1e-9;  // count only the surface
-    const BeamReceiver receiver(c, vacuum());
+    const BeamReceiver receiver(c, ladarsim::test::vacuum());
     const ApdReceiver& apd = receiver.apd();
     const PulseShape pulse = receiver.waveform().pulse();
     // A signal at the threshold plus one noise sigma (the noise with that signal): Pd = Phi(1) = 0.841.
@@ -77,9 +72,9 @@ TEST_CASE("detection probability of a return follows the Gaussian noise at its p
 
 TEST_CASE("range folding: returns beyond c / (2 PRF) arrive in a later pulse's gate", "[beam_receiver]") {
     SensorConfig c;  // the paper's 1 MHz: 149.9 m unambiguous range
-    const BeamReceiver folding(c, vacuum(), false);
+    const BeamReceiver folding(c, ladarsim::test::vacuum(), false);
     c.range_folding = false;
-    const BeamReceiver coded(c, vacuum(), false);
+    const BeamReceiver coded(c, ladarsim::test::vacuum(), false);
     const double energy = 1e-14;
     const auto folded = folding.receive({one_surface(600.0, energy)}, BeamKey{1, 0, 0});
     const auto plain = coded.receive({one_surface(600.0, energy)}, BeamKey{1, 0, 0});
@@ -95,7 +90,7 @@ TEST_CASE("range folding: returns beyond c / (2 PRF) arrive in a later pulse's g
 TEST_CASE("a strong near return saturates and never reports more than the pulse", "[beam_receiver]") {
     SensorConfig c;
     c.range_folding = false;
-    const BeamReceiver receiver(c, vacuum(), false);
+    const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
     // A white wall 5 m away would put 7e-9 J on the detector: amps, far past the 2 mA clip.
     const auto r = receiver.receive({one_surface(5.0, 7e-9)}, BeamKey{1, 0, 0});
     REQUIRE(r.size() == 1);
@@ -109,7 +104,7 @@ TEST_CASE("a strong near return saturates and never reports more than the pulse"
 TEST_CASE("hard cases give finite, sensible numbers: 2 km, grazing stretch, sub-threshold", "[beam_receiver]") {
     SensorConfig c;
     c.range_folding = false;
-    const BeamReceiver receiver(c, vacuum());
+    const BeamReceiver receiver(c, ladarsim::test::vacuum());
     // A 0.3 m drone at 2 km holding 6 % of the footprint: about 1e-15 J.
     auto far = receiver.receive({one_surface(2000.0, 2e-15)}, BeamKey{1, 0, 1});
     for (const auto& r : far) {
@@ -140,7 +135,7 @@ TEST_CASE("reported returns: all, first, last, strongest, first and last", "[bea
     c.range_folding = false;
     auto receive = [&](ReportedReturns mode) {
         c.reported_returns = mode;
-        const BeamReceiver receiver(c, vacuum(), false);
+        const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
         return receiver.receive({one_surface(100.0, 1e-15, 1), one_surface(101.0, 5e-15, 2), one_surface(102.0, 2e-15, 3)},
                                 BeamKey{1, 0, 0});
     };

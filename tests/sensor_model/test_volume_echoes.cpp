@@ -8,6 +8,7 @@
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/volume_echoes.h"
+#include "../support/atmospheres.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
@@ -15,12 +16,6 @@ using namespace ladarsim::sensor_model;
 using namespace ladarsim::test;
 
 namespace {
-
-Atmosphere vacuum() {
-    Atmosphere a;
-    a.visibility_m = std::numeric_limits<double>::infinity();
-    return a;
-}
 
 /// A closed box of fog (meteorological optical range `mor_m`) spanning x in [x0, x1].
 std::shared_ptr<const scene::Model> fog_box(double x0, double x1, double half_width, double mor_m) {
@@ -34,7 +29,7 @@ std::shared_ptr<const scene::Model> fog_box(double x0, double x1, double half_wi
 TEST_CASE("free-path sampling of backscatter is an unbiased estimate of its integral", "[volume]") {
     SensorConfig c;
     c.range_folding = false;
-    const BeamReceiver receiver(c, vacuum(), false);
+    const BeamReceiver receiver(c, test::vacuum(), false);
     const scene::Material fog = scene::fog_medium("fog", 150.0);  // alpha 0.02 /m, beta 3.1e-4 /m/sr
     const raytrace::VolumeSegment segment{9, 40.0, 140.0, fog.extinction_per_m, fog.backscatter_per_m_sr};
     const double area = c.aperture_area_m2(), r2 = area / M_PI;
@@ -73,7 +68,7 @@ TEST_CASE("a sensor inside fog: the wall behind is dimmed by exp(-2 tau), the fo
     s.sensor.range_folding = false;
     s.sensor.saturation_current_a = 1e6;
     s.render.noise = false;
-    s.atmosphere = vacuum();
+    s.atmosphere = test::vacuum();
     s.mount.gimbal_az_deg = 0.0;
     s.mount.gimbal_el_deg = 0.0;
     const double mor = 100.0, fog_end = 30.0, wall = 80.0;

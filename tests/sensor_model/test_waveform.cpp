@@ -9,6 +9,7 @@
 #include "ladarsim/sensor_model/beam_receiver.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/waveform.h"
+#include "../support/atmospheres.h"
 
 using namespace ladarsim::sensor_model;
 
@@ -68,9 +69,7 @@ TEST_CASE("range jitter of the timed pulse against its first-order closed form",
 
 TEST_CASE("two surfaces 10 cm apart make one return, 50 cm apart two, energies in their ratio", "[waveform]") {
     const SensorConfig c = quiet_sensor();
-    Atmosphere vacuum;
-    vacuum.visibility_m = std::numeric_limits<double>::infinity();
-    const BeamReceiver receiver(c, vacuum, false);
+    const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
     const ApdReceiver& apd = receiver.apd();
     const double e1 = energy_for_snr(apd, receiver.waveform().pulse(), 200.0);
     const double e2 = 0.4 * e1;
@@ -102,9 +101,7 @@ TEST_CASE("two surfaces 10 cm apart make one return, 50 cm apart two, energies i
 
 TEST_CASE("the pulse-merging distance is the pulse's own: c tau / 2 = 15 cm", "[waveform]") {
     const SensorConfig c = quiet_sensor();
-    Atmosphere vacuum;
-    vacuum.visibility_m = std::numeric_limits<double>::infinity();
-    const BeamReceiver receiver(c, vacuum, false);
+    const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
     const double e = energy_for_snr(receiver.apd(), receiver.waveform().pulse(), 200.0);
     auto returns_at_gap = [&](double gap_m) {
         std::vector<BeamSurface> s(2);
