@@ -19,6 +19,7 @@
 #include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/json_file.h"
 #include "ladarsim/sensor_model/target_point_counts.h"
+#include "ladarsim/sensor_model/velodyne_pcap.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sensor_config.h"
 
@@ -110,6 +111,11 @@ int main(int argc, char** argv) {
     eval_cmd->add_option("--detections", detections_file, "Detections JSON written by `ladarsim detect`")->required();
     eval_cmd->add_option("--json", eval_json, "Write the scores (mean_l2_m, mean_iou, eao, frames, failures, per frame)");
     eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
+
+    std::string pcap_file;
+    auto* import_cmd = app.add_subcommand("import-velodyne", "Decode a VLP-16 pcap capture into a dataset of recorded frames");
+    import_cmd->add_option("pcap", pcap_file, "libpcap capture of VLP-16 packets")->required();
+    import_cmd->add_option("--out", out_dir, "Output dataset directory")->required();
 
     std::string assets_dir;
     auto* assets = app.add_subcommand("make-assets", "Write the procedural glTF models ladarsim ships");
@@ -226,6 +232,13 @@ int main(int argc, char** argv) {
                 if (std::system(command.c_str()) != 0) throw std::runtime_error("the plot script failed: " + command);
                 if (eval_json.empty()) std::filesystem::remove(json_path);
             }
+        } else if (*import_cmd) {
+            const auto frames = sensor_model::read_velodyne_vlp16_pcap(pcap_file);
+            sensor_model::write_recorded_dataset(frames, out_dir, pcap_file);
+            std::size_t returns = 0;
+            for (const auto& f : frames) returns += f.returns.size();
+            std::printf("decoded %zu frames, %zu returns from %s into %s/frames\n", frames.size(), returns, pcap_file.c_str(),
+                        out_dir.c_str());
         } else if (*assets) {
             scene::write_default_assets(assets_dir);
             std::printf("wrote the procedural models to %s\n", assets_dir.c_str());

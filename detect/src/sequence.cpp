@@ -34,6 +34,7 @@ Sequence load_sequence(const std::filesystem::path& dir) {
         const nlohmann::json manifest = sensor_model::read_json(dir / "manifest.json");
         const auto& frames = manifest.at("frames");
         for (std::size_t i = 0; i < files.size() && i < frames.size(); ++i) {
+            if (!frames[i].contains("gimbal_az_rad")) continue;  // recorded frames carry no pointing
             const double az = frames[i].at("gimbal_az_rad").get<double>(), el = frames[i].at("gimbal_el_rad").get<double>();
             s.boresight[i] = Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
         }

@@ -175,3 +175,25 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
 }
 
 }  // namespace ladarsim::sensor_model
+
+namespace ladarsim::sensor_model {
+
+void write_recorded_dataset(const std::vector<Frame>& frames, const std::filesystem::path& out_dir,
+                            const std::filesystem::path& source) {
+    const std::filesystem::path out = checked_out_dir(out_dir);
+    const std::filesystem::path staging = out.string() + ".partial";
+    std::filesystem::remove_all(staging);
+    std::filesystem::create_directories(staging / "frames");
+    nlohmann::json log = nlohmann::json::array();
+    for (const Frame& f : frames) {
+        write_frame_pcd(staging / "frames" / (frame_file_stem(f.index) + ".pcd"), f);
+        log.push_back({{"index", f.index}, {"start_time_s", f.start_time_s}, {"end_time_s", f.end_time_s},
+                       {"returns", f.returns.size()}});
+    }
+    write_json(staging / "manifest.json", {{"software", {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}},
+                                           {"recorded_from", std::filesystem::absolute(source).string()},
+                                           {"frames", log}});
+    swap_in(staging, out);
+}
+
+}  // namespace ladarsim::sensor_model

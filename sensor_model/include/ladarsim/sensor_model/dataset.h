@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/scenario.h"
 
 namespace ladarsim::sensor_model {
@@ -37,5 +38,11 @@ struct DatasetSummary {
 /// which replaces `out_dir` once every file is there. `out_dir` may be absent, empty or an earlier
 /// dataset; any other existing path is an InputError, checked before rendering starts.
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options);
+
+/// Writes recorded frames (e.g. decoded Velodyne packets) as a dataset detect/ reads:
+/// frames/NNNNNN.pcd and a manifest.json naming the source; no ground truth, no initial map.
+/// The same rules for `out_dir` as render_dataset.
+void write_recorded_dataset(const std::vector<Frame>& frames, const std::filesystem::path& out_dir,
+                            const std::filesystem::path& source);
 
 }  // namespace ladarsim::sensor_model
