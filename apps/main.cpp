@@ -1,6 +1,8 @@
 // The ladarsim command line: parses arguments and calls the libraries, nothing more.
 #include <cstdio>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <optional>
 #include <filesystem>
@@ -49,6 +51,10 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                                        " points of the static scene)").c_str() : "");
 }
 
+/// Set by SIGINT/SIGTERM: the render loop stops after the frame it is on.
+std::atomic<bool> g_stop{false};
+extern "C" void request_stop(int) { g_stop.store(true); }
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,6 +74,9 @@ int main(int argc, char** argv) {
     render->add_option("--threads", threads, "Worker threads (default: all cores); output does not depend on it")
         ->check(CLI::NonNegativeNumber);
     render->add_flag("--quiet", quiet, "No progress output");
+    bool resume = false;
+    render->add_flag("--resume", resume,
+                     "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
 
     auto* sensor = app.add_subcommand("sensor", "Sensor presets");
     sensor->require_subcommand(1);
@@ -133,13 +142,23 @@ int main(int argc, char** argv) {
             if (render->count("--frames")) options.frames = frames;
             if (render->count("--seed")) options.seed = seed;
             options.threads = threads;
+            options.resume = resume;
+            options.stop = &g_stop;
+            std::signal(SIGINT, request_stop);
+            std::signal(SIGTERM, request_stop);
             if (!quiet) {
                 options.progress = [](int done, int total) {
                     std::fprintf(stderr, "\rframe %d/%d", done, total);
                     if (done == total) std::fprintf(stderr, "\n");
                 };
             }
-            print_summary(scenario, sensor_model::render_dataset(scenario, options));
+            const auto summary = sensor_model::render_dataset(scenario, options);
+            if (summary.interrupted) {
+                std::fprintf(stderr, "\ninterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
+                             summary.frames, summary.out_dir.string().c_str());
+                return 130;
+            }
+            print_summary(scenario, summary);
         } else if (*show) {
             std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
         } else if (*table1) {

@@ -12,6 +12,8 @@
 
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/sensor_model/frame_io.h"
+#include "ladarsim/sensor_model/ground_truth_file.h"
+#include "ladarsim/sensor_model/json_file.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 
 namespace ladarsim::sensor_model {
@@ -111,9 +113,8 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     // previous dataset untouched, and a finished one never mixes with its stale frames.
     const std::filesystem::path out = checked_out_dir(options.out_dir);
     const std::filesystem::path staging = out.string() + ".partial";
-    std::filesystem::remove_all(staging);
+    const std::filesystem::path progress_file = staging / "progress.json";
     const std::filesystem::path frames_dir = staging / "frames";
-    std::filesystem::create_directories(frames_dir);
 
     FrameRenderer renderer(scenario);
     DatasetSummary summary;
@@ -122,8 +123,40 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
     using Clock = std::chrono::steady_clock;
+    const nlohmann::json run_key = {{"scenario", scenario.source}, {"seed", scenario.render.seed}, {"frames", scenario.render.frames}};
 
-    for (int k = 0; k < scenario.render.frames; ++k) {
+    int first = 0;
+    if (options.resume && std::filesystem::exists(progress_file)) {
+        // Frames are independent given the scenario and seed (the gimbal is replayed from frame 0),
+        // so the frames on disk are exactly what this run would render again.
+        const nlohmann::json progress = read_json(progress_file);
+        if (progress.at("run") != run_key)
+            throw InputError(progress_file.string(), "run", "the interrupted run is of another scenario, seed or frame count");
+        truth = read_ground_truth_json(staging / "ground_truth.partial.json");
+        frame_log = progress.at("frames");
+        first = static_cast<int>(frame_log.size());
+        for (const auto& f : frame_log) {
+            pointings.push_back({f.at("gimbal_az_rad").get<double>(), f.at("gimbal_el_rad").get<double>()});
+            summary.returns += f.at("returns").get<std::uint64_t>();
+            summary.render_seconds += f.at("render_s").get<double>();
+        }
+        for (const auto& [id, count] : progress.at("returns_by_object").items())
+            summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] = count.get<std::uint64_t>();
+    } else {
+        std::filesystem::remove_all(staging);
+        std::filesystem::create_directories(frames_dir);
+    }
+
+    for (int k = first; k < scenario.render.frames; ++k) {
+        if (options.stop && options.stop->load()) {
+            nlohmann::json by_object = nlohmann::json::object();
+            for (const auto& [id, count] : summary.returns_by_object) by_object[std::to_string(id)] = count;
+            write_ground_truth_json(staging / "ground_truth.partial.json", truth);
+            write_json(progress_file, {{"run", run_key}, {"frames", frame_log}, {"returns_by_object", by_object}});
+            summary.interrupted = true;
+            summary.frames = k;
+            return summary;
+        }
         const auto started = Clock::now();
         const Frame frame = renderer.render(static_cast<std::uint64_t>(k));
         const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
@@ -170,6 +203,8 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
           {"beams_per_s", summary.beams_per_second}}},
     };
     write_json(staging / "manifest.json", manifest);
+    std::filesystem::remove(progress_file);
+    std::filesystem::remove(staging / "ground_truth.partial.json");
     swap_in(staging, out);
     return summary;
 }

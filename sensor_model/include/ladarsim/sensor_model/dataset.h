@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -18,6 +19,12 @@ struct DatasetOptions {
     int threads = 0;                    ///< 0 = all cores
     /// Called after each frame is on disk.
     std::function<void(int frames_done, int frames_total)> progress;
+    /// Checked before each frame: when it reads true the run stops, leaving `<out_dir>.partial`
+    /// with every finished frame and a progress.json that `resume` continues from.
+    const std::atomic<bool>* stop = nullptr;
+    /// Continue the interrupted run in `<out_dir>.partial` (same scenario, seed and frame count)
+    /// instead of starting over; without one, start over.
+    bool resume = false;
 };
 
 struct DatasetSummary {
@@ -27,6 +34,7 @@ struct DatasetSummary {
     double render_seconds = 0.0;
     double beams_per_second = 0.0;
     std::size_t background_points = 0;  ///< points of background.pcd (0: nothing static, no file)
+    bool interrupted = false;           ///< stopped early; `frames` were finished
     std::filesystem::path out_dir;
 };
 
