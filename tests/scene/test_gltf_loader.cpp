@@ -240,6 +240,18 @@ TEST_CASE("malformed glTF is one InputError naming the file and the field", "[gl
     bad_rho.node({{"mesh", bad_rho.mesh(bad_rho.positions(kUnitTriangle), -1, 0)}});
     CHECK_THAT(message(bad_rho.write_gltf(dir.path() / "rho.gltf")), Contains("materials[0].extras.ladar.reflectance"));
 
+    GltfBuilder vec2;
+    vec2.node({{"mesh", vec2.mesh(vec2.positions(kUnitTriangle), -1)}});
+    vec2.doc["accessors"][0]["type"] = "VEC2";
+    CHECK_THAT(message(vec2.write_gltf(dir.path() / "vec2.gltf")), Contains("POSITION") && Contains("VEC3"));
+
+    GltfBuilder external;
+    external.node({{"mesh", external.mesh(external.positions(kUnitTriangle), -1)}});
+    json doc = external.finished();
+    doc["buffers"][0]["uri"] = "missing.bin";
+    std::ofstream(dir.path() / "external.gltf") << doc.dump();
+    CHECK_THAT(message(dir.path() / "external.gltf"), Contains("external.gltf"));
+
     GltfBuilder empty;
     empty.node({{"name", "nothing here"}});
     CHECK_THAT(message(empty.write_gltf(dir.path() / "empty.gltf")), Contains("no usable triangles"));
