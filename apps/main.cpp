@@ -162,16 +162,8 @@ int main(int argc, char** argv) {
         } else if (*show) {
             std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
         } else if (*table1) {
-            const auto plate = std::make_shared<scene::Model>([] {
-                // A 0.3 m square facing the sensor, the paper's abstraction of the drone.
-                scene::Model m;
-                m.source = "0.3 m plate";
-                m.mesh.positions = {{0, -0.15f, -0.15f}, {0, 0.15f, -0.15f}, {0, 0.15f, 0.15f}, {0, -0.15f, 0.15f}};
-                m.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-                m.mesh.triangle_material = {0, 0};
-                m.materials = {scene::Material{"plate", scene::kDefaultReflectance}};
-                return m;
-            }());
+            // A 0.3 m square facing the sensor, the paper's abstraction of the drone.
+            const auto plate = std::make_shared<scene::Model>(scene::make_plate(0.3, scene::kDefaultReflectance));
             const auto drone = std::make_shared<scene::Model>(scene::make_quadcopter());
             sensor_model::SensorConfig sensor = sensor_model::sensor_preset("paper_ladar");
             sensor.footprint_samples = table_samples;

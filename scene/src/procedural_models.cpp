@@ -18,10 +18,11 @@ class ModelBuilder {
 public:
     explicit ModelBuilder(std::string source) { model_.source = std::move(source); }
 
-    std::uint32_t material(const std::string& name, double reflectance) {
-        model_.materials.push_back(Material{name, reflectance});
+    std::uint32_t material(Material m) {
+        model_.materials.push_back(std::move(m));
         return static_cast<std::uint32_t>(model_.materials.size()) - 1;
     }
+    std::uint32_t material(const std::string& name, double reflectance) { return material(Material{name, reflectance}); }
 
     /// A convex, closed piece: every triangle is turned to face away from the piece's centroid,
     /// so callers list corners in any order.
@@ -179,6 +180,17 @@ Model make_terrain() {
     return b.take();
 }
 
+Model make_plate(double side_m, double reflectance) {
+    ModelBuilder b("procedural:plate");
+    const std::uint32_t m = b.material("plate", reflectance);
+    const float h = static_cast<float>(0.5 * side_m);
+    Model& model = b.model();
+    model.mesh.positions = {{0, -h, -h}, {0, h, -h}, {0, h, h}, {0, -h, h}};
+    model.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    model.mesh.triangle_material = {m, m};
+    return b.take();
+}
+
 Model make_box_building(double length_m, double width_m, double height_m) {
     ModelBuilder b("procedural:building");
     const std::uint32_t concrete = b.material("concrete", 0.35);
@@ -248,11 +260,7 @@ Model make_airliner() {
 Model make_cloud(double diameter_m, double extinction_per_m) {
     ModelBuilder b("procedural:cloud");
     // A lidar ratio of 20 sr (extinction / backscatter) is typical of water clouds.
-    Material water = fog_medium("cloud_water", 1.0);
-    water.extinction_per_m = extinction_per_m;
-    water.backscatter_per_m_sr = extinction_per_m / 20.0;
-    const std::uint32_t m = b.material(water.name, 0.0);
-    b.model().materials[m] = water;
+    const std::uint32_t m = b.material(Material{"cloud_water", 0.0, extinction_per_m, extinction_per_m / 20.0});
     b.ellipsoid(Eigen::Vector3d::Zero(), {0.5 * diameter_m, 0.5 * diameter_m, 0.3 * diameter_m}, 16, m);
     return b.take();
 }

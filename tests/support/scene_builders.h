@@ -5,19 +5,14 @@
 #include <memory>
 #include <utility>
 
+#include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/scene/scene.h"
 
 namespace ladarsim::test {
 
 /// A square plate in the model's y-z plane (facing -x and +x), side `side_m`, centred on the origin.
 inline std::shared_ptr<const scene::Model> plate(double side_m, double reflectance) {
-    auto m = std::make_shared<scene::Model>();
-    const float h = static_cast<float>(0.5 * side_m);
-    m->mesh.positions = {{0, -h, -h}, {0, h, -h}, {0, h, h}, {0, -h, h}};
-    m->mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-    m->mesh.triangle_material = {0, 0};
-    m->materials = {scene::Material{"plate", reflectance}};
-    return m;
+    return std::make_shared<scene::Model>(scene::make_plate(side_m, reflectance));
 }
 
 /// A regular `segments`-gon of circumradius `radius_m` in the model's y-z plane, facing +-x.

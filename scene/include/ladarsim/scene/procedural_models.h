@@ -18,6 +18,10 @@ Model make_quadcopter();
 /// 2 km target). Grass and soil, 0.3.
 Model make_terrain();
 
+/// A square plate of side `side_m` in the model's y-z plane, centred on the origin, facing +-x:
+/// the paper's abstraction of a target.
+Model make_plate(double side_m, double reflectance);
+
 /// A closed box, base on z = 0 and centred on the origin in x and y; concrete, 0.35.
 Model make_box_building(double length_m, double width_m, double height_m);
 
