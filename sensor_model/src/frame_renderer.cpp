@@ -173,15 +173,20 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
                 ++last;
             }
             BeamSurface surface;
-            std::map<std::uint32_t, double> energy_by_object;
+            bool one_object = true;
             for (std::size_t k = first; k < last; ++k) {
                 surface.weight += surface_hits[k].weight;
                 surface.echoes.push_back({surface_hits[k].range_m, surface_hits[k].energy_j, 0});
-                energy_by_object[surface_hits[k].object_id] += surface_hits[k].energy_j;
+                one_object = one_object && surface_hits[k].object_id == surface_hits[first].object_id;
             }
-            surface.object_id = std::max_element(energy_by_object.begin(), energy_by_object.end(),
-                                                  [](const auto& a, const auto& b) { return a.second < b.second; })
-                                    ->first;
+            surface.object_id = surface_hits[first].object_id;
+            if (!one_object) {  // rare (objects within return_gap_m of each other): tally per object
+                std::map<std::uint32_t, double> energy_by_object;
+                for (std::size_t k = first; k < last; ++k) energy_by_object[surface_hits[k].object_id] += surface_hits[k].energy_j;
+                surface.object_id = std::max_element(energy_by_object.begin(), energy_by_object.end(),
+                                                      [](const auto& a, const auto& b) { return a.second < b.second; })
+                                        ->first;
+            }
             surfaces.push_back(std::move(surface));
             first = last;
         }
