@@ -72,6 +72,13 @@ struct TracedScene::Impl {
     std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene
     std::map<const scene::Model*, std::size_t> model_index;
     const scene::BackgroundMap* background = nullptr;
+    // One per mesh object: its bounds, and for a moving object its transform at each motion step.
+    struct BoundsTrack {
+        const scene::SceneObject* object;
+        ObjectBounds bounds;
+        std::vector<Matrix34> step_world_from_model;
+    };
+    std::vector<BoundsTrack> bounds;
     double window_begin_s = 0.0;
     double window_length_s = 0.0;
 
@@ -102,6 +109,7 @@ struct TracedScene::Impl {
         volumes.reset(rtcNewScene(device.get()));
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
+            add_bounds(object);
             if (object.model->is_volume()) add_volume(object);
             else if (object.trajectory.is_static()) add_static_mesh(object);
             else add_moving_instance(object);
@@ -144,6 +152,24 @@ struct TracedScene::Impl {
         pose.translation() -= origin_world;
         Eigen::Affine3d m = pose * Eigen::Scaling(object.scale);
         return m.matrix().topRows<3>();
+    }
+
+    Matrix34 world_from_model(const scene::SceneObject& object, double time_s) const {
+        Matrix34 m = relative_from_model(object, time_s);
+        m.col(3) += origin_world;
+        return m;
+    }
+
+    void add_bounds(const scene::SceneObject& object) {
+        ObjectBounds b;
+        b.object_id = object.id;
+        b.box_model = object.model->bounds().cast<double>();
+        b.radius_m = 0.5 * object.scale * b.box_model.sizes().norm();
+        b.volume = object.model->is_volume();
+        b.moving = !b.volume && !object.trajectory.is_static();
+        b.world_from_model = world_from_model(object, 0.0);
+        b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
+        bounds.push_back({&object, b, {}});
     }
 
     void add_static_mesh(const scene::SceneObject& object) {
@@ -210,6 +236,13 @@ struct TracedScene::Impl {
         if (motion_steps < 2) throw std::invalid_argument("TracedScene: motion_steps must be at least 2");
         window_begin_s = begin_s;
         window_length_s = end_s - begin_s;
+        for (BoundsTrack& track : bounds) {
+            if (!track.bounds.moving) continue;
+            track.step_world_from_model.resize(static_cast<std::size_t>(motion_steps));
+            for (int step = 0; step < motion_steps; ++step)
+                track.step_world_from_model[static_cast<std::size_t>(step)] =
+                    world_from_model(*track.object, begin_s + window_length_s * step / (motion_steps - 1));
+        }
         for (auto& entry : geometries) {
             if (entry.kind != GeometryKind::moving_instance) continue;
             RTCGeometry g = entry.geometry.get();
@@ -349,6 +382,21 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
 }
 
 bool TracedScene::has_volumes() const { return !impl_->volume_objects.empty(); }
+
+void TracedScene::object_bounds(double time_s, std::vector<ObjectBounds>& out) const {
+    out.clear();
+    const double u = impl_->embree_time(time_s);
+    for (const Impl::BoundsTrack& track : impl_->bounds) {
+        out.push_back(track.bounds);
+        if (!track.bounds.moving) continue;
+        const auto& m = track.step_world_from_model;
+        const double f = u * static_cast<double>(m.size() - 1);
+        const std::size_t i = std::min(static_cast<std::size_t>(f), m.size() - 2);
+        ObjectBounds& b = out.back();
+        b.world_from_model = m[i] + (f - static_cast<double>(i)) * (m[i + 1] - m[i]);
+        b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
+    }
+}
 
 TracedScene::TracedScene(const scene::Scene& scene, const Eigen::Vector3d& origin_world)
     : impl_(std::make_unique<Impl>(scene, origin_world)) {}

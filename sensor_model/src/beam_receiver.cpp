@@ -9,17 +9,18 @@
 namespace ladarsim::sensor_model {
 namespace {
 
-/// Energy-weighted mean and standard deviation of a surface's echo ranges.
+/// Energy-weighted mean and standard deviation of the ranges a surface's echoes came from (an
+/// echo of a whole patch brings its own spread).
 std::pair<double, double> range_moments(const std::vector<Echo>& echoes) {
     double energy = 0.0, mean = 0.0;
     for (const Echo& e : echoes) {
         energy += e.energy_j;
         mean += e.energy_j * e.range_m;
     }
-    if (!(energy > 0.0)) return {echoes.front().range_m, 0.0};
+    if (!(energy > 0.0)) return {echoes.front().range_m, echoes.front().spread_m};
     mean /= energy;
     double variance = 0.0;
-    for (const Echo& e : echoes) variance += e.energy_j * (e.range_m - mean) * (e.range_m - mean);
+    for (const Echo& e : echoes) variance += e.energy_j * ((e.range_m - mean) * (e.range_m - mean) + e.spread_m * e.spread_m);
     return {mean, std::sqrt(variance / energy)};
 }
 

@@ -7,21 +7,59 @@
 
 namespace ladarsim::sensor_model {
 
+namespace {
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
+
+/// Inverse of the standard normal CDF: Acklam's rational approximation (relative error 1e-9),
+/// polished by one Halley step to full double precision.
+double inverse_normal_cdf(double p) {
+    static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+                                   1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+    static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                                   6.680131188771972e+01, -1.328068155288572e+01};
+    static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
+                                   -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+    static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
+                                   3.754408661907416e+00};
+    constexpr double p_low = 0.02425;
+    double x;
+    if (p < p_low) {
+        const double q = std::sqrt(-2.0 * std::log(p));
+        x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+    } else if (p <= 1.0 - p_low) {
+        const double q = p - 0.5, r = q * q;
+        x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+            (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
+    } else {
+        const double q = std::sqrt(-2.0 * std::log1p(-p));
+        x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+    }
+    const double e = normal_cdf(x) - p;
+    const double u = e * std::sqrt(kTwoPi) * std::exp(0.5 * x * x);
+    return x - u / (1.0 + 0.5 * x * u);
+}
+}  // namespace
+
 Footprint::Footprint(double divergence_rad, int samples, double truncation)
-    : waist_rad_(0.5 * divergence_rad), max_radius_rad_(truncation * 0.5 * divergence_rad) {
+    : waist_rad_(0.5 * divergence_rad),
+      max_radius_rad_(truncation * 0.5 * divergence_rad),
+      captured_(-std::expm1(-2.0 * truncation * truncation)) {
     if (!(divergence_rad > 0.0) || samples < 1 || !(truncation > 0.0)) {
         throw std::invalid_argument("footprint needs a positive divergence, sample count and truncation");
     }
-    const double captured = -std::expm1(-2.0 * truncation * truncation);
     const double golden_angle = std::numbers::pi * (3.0 - std::sqrt(5.0));
     const int rings = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples)))));
     cells_.reserve(static_cast<std::size_t>(samples));
     int first = 0;
     for (int ring = 0; ring < rings; ++ring) {
         const int in_ring = samples / rings + (ring < samples % rings ? 1 : 0);
-        const double lo = captured * first / samples;
-        const double hi = captured * (first + in_ring) / samples;
-        const double sector = 2.0 * std::numbers::pi / in_ring;
+        const double lo = captured_ * first / samples;
+        const double hi = captured_ * (first + in_ring) / samples;
+        const double sector = kTwoPi / in_ring;
         const double turn = golden_angle * ring;
         for (int k = 0; k < in_ring; ++k) {
             cells_.push_back({lo, hi, turn + k * sector, turn + (k + 1) * sector});
@@ -30,24 +68,72 @@ Footprint::Footprint(double divergence_rad, int samples, double truncation)
     }
 }
 
-SubRay Footprint::place(const Cell& cell, double u_energy, double u_angle) const {
+SubRay Footprint::place(const FootprintRegion& cell, double u_energy, double u_angle, double weight) const {
     // Invert the enclosed energy F(r) = 1 - exp(-2 r^2 / w^2).
     const double energy = cell.energy_lo + u_energy * (cell.energy_hi - cell.energy_lo);
     const double radius = waist_rad_ * std::sqrt(-0.5 * std::log1p(-energy));
     const double angle = cell.angle_lo_rad + u_angle * (cell.angle_hi_rad - cell.angle_lo_rad);
-    return {radius * std::cos(angle), radius * std::sin(angle), 1.0 / static_cast<double>(cells_.size())};
+    return {radius * std::cos(angle), radius * std::sin(angle), weight};
 }
 
 void Footprint::fixed(std::span<SubRay> out) const {
+    const double weight = 1.0 / static_cast<double>(cells_.size());
     for (std::size_t i = 0; i < cells_.size(); ++i) {
         // A lone sample stands for the whole disc: its natural place is the beam axis.
-        out[i] = cells_.size() == 1 ? SubRay{0.0, 0.0, 1.0} : place(cells_[i], 0.5, 0.5);
+        out[i] = cells_.size() == 1 ? SubRay{0.0, 0.0, 1.0} : place(cells_[i], 0.5, 0.5, weight);
     }
 }
 
 void Footprint::jittered(std::span<SubRay> out, std::span<const double> uniforms) const {
+    const double weight = 1.0 / static_cast<double>(cells_.size());
     for (std::size_t i = 0; i < cells_.size(); ++i) {
-        out[i] = place(cells_[i], uniforms[2 * i], uniforms[2 * i + 1]);
+        out[i] = place(cells_[i], uniforms[2 * i], uniforms[2 * i + 1], weight);
+    }
+}
+
+FootprintRegion Footprint::whole() const { return {0.0, captured_, 0.0, kTwoPi}; }
+
+void Footprint::grid(const FootprintRegion& region, int n, std::span<SubRay> out, std::span<const double> uniforms) const {
+    const double d_energy = (region.energy_hi - region.energy_lo) / n;
+    const double d_angle = (region.angle_hi_rad - region.angle_lo_rad) / n;
+    const double weight = d_energy / captured_ * d_angle / kTwoPi;
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i * n + j);
+            const FootprintRegion cell{region.energy_lo + i * d_energy, region.energy_lo + (i + 1) * d_energy,
+                                       region.angle_lo_rad + j * d_angle, region.angle_lo_rad + (j + 1) * d_angle};
+            out[k] = uniforms.empty() ? place(cell, 0.5, 0.5, weight)
+                                      : place(cell, uniforms[2 * k], uniforms[2 * k + 1], weight);
+        }
+    }
+}
+
+std::optional<FootprintRect> Footprint::clip(const FootprintRect& rect) const {
+    const FootprintRect r{std::max(rect.x_lo, -max_radius_rad_), std::min(rect.x_hi, max_radius_rad_),
+                          std::max(rect.y_lo, -max_radius_rad_), std::min(rect.y_hi, max_radius_rad_)};
+    if (!(r.x_lo < r.x_hi) || !(r.y_lo < r.y_hi)) return std::nullopt;
+    return r;
+}
+
+bool Footprint::contains(const FootprintRect& rect, double x_rad, double y_rad) const {
+    return x_rad >= rect.x_lo && x_rad <= rect.x_hi && y_rad >= rect.y_lo && y_rad <= rect.y_hi;
+}
+
+void Footprint::grid(const FootprintRect& rect, int n, std::span<SubRay> out, std::span<const double> uniforms) const {
+    // Each axis is a normal distribution of sigma = w / 2: cut its CDF over the rectangle evenly.
+    const double sigma = 0.5 * waist_rad_;
+    const double x0 = normal_cdf(rect.x_lo / sigma), dx = (normal_cdf(rect.x_hi / sigma) - x0) / n;
+    const double y0 = normal_cdf(rect.y_lo / sigma), dy = (normal_cdf(rect.y_hi / sigma) - y0) / n;
+    const double weight = dx * dy / captured_;
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i * n + j);
+            const double ux = uniforms.empty() ? 0.5 : uniforms[2 * k];
+            const double uy = uniforms.empty() ? 0.5 : uniforms[2 * k + 1];
+            const double x = sigma * inverse_normal_cdf(x0 + (i + ux) * dx);
+            const double y = sigma * inverse_normal_cdf(y0 + (j + uy) * dy);
+            out[k] = {x, y, x * x + y * y <= max_radius_rad_ * max_radius_rad_ ? weight : 0.0};
+        }
     }
 }
 

@@ -1,7 +1,7 @@
 #include "ladarsim/sensor_model/frame_renderer.h"
 
 #include <algorithm>
-#include <map>
+#include <cmath>
 #include <numbers>
 
 #include <tbb/parallel_for.h>
@@ -9,8 +9,6 @@
 #include "ladarsim/sensor_model/beam_geometry.h"
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/physical_constants.h"
-#include "ladarsim/sensor_model/range_equation.h"
-#include "ladarsim/sensor_model/volume_echoes.h"
 
 namespace ladarsim::sensor_model {
 
@@ -26,26 +24,6 @@ GimbalPointing initial_pointing(const SensorMount& mount, GimbalPointing cue, bo
     return p;
 }
 
-struct SubRayHit {
-    double range_m;
-    double weight;
-    double energy_j;  ///< reaching the detector, by the range equation
-    std::uint32_t object_id;
-    Eigen::Vector3d point_world;
-    Eigen::Vector3f normal_world;
-};
-
-/// Two sub-ray hits (sorted by range) belong to one surface when their ranges are within the gap,
-/// or when they lie on one object's locally continuous surface: each within the gap of the other's
-/// tangent plane. Without the second rule a surface seen at grazing incidence, whose footprint
-/// spans metres in range, would break into one return per sub-ray.
-bool same_surface(const SubRayHit& a, const SubRayHit& b, double gap_m) {
-    if (b.range_m - a.range_m <= gap_m) return true;
-    if (a.object_id != b.object_id) return false;
-    const Eigen::Vector3d d = b.point_world - a.point_world;
-    return std::abs(a.normal_world.cast<double>().dot(d)) <= gap_m && std::abs(b.normal_world.cast<double>().dot(d)) <= gap_m;
-}
-
 }  // namespace
 
 Eigen::Vector3d object_centre_world(const scene::SceneObject& object, double time_s) {
@@ -57,9 +35,52 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
     : scenario_(scenario),
       traced_(scenario.scene, scenario.mount.position_world),
       raster_(scenario.sensor),
-      footprint_(scenario.sensor.divergence_mrad * kMradToRad, scenario.sensor.footprint_samples,
-                 scenario.sensor.footprint_truncation),
-      receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise) {}
+      receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise),
+      integrator_(scenario, traced_, receiver_) {
+    if (integrator_.adaptive()) find_neighbours();
+}
+
+void FrameRenderer::find_neighbours() {
+    const SensorConfig& sensor = scenario_.sensor;
+    const double ellipticity = sensor.divergence_el_mrad / sensor.divergence_mrad;
+    const double column_pitch = sensor.field_az_deg * std::numbers::pi / 180.0 / raster_.columns();
+    const double row_pitch = sensor.field_el_deg * std::numbers::pi / 180.0 / raster_.rows();
+    const double r_max = integrator_.footprint().max_offset_rad();
+    // Neighbours whose axes fall inside the footprint (in footprint coordinates, elevation
+    // divided by the ellipticity), thinned to about 8 per footprint radius and axis: a denser
+    // raster adds cost, not information.
+    const int reach_columns = std::min(static_cast<int>(r_max / column_pitch), raster_.columns());
+    const int reach_rows = std::min(static_cast<int>(r_max * ellipticity / row_pitch), raster_.rows());
+    const int stride_columns = std::max(1, (reach_columns + 7) / 8);
+    const int stride_rows = std::max(1, (reach_rows + 7) / 8);
+    for (int dr = -reach_rows / stride_rows * stride_rows; dr <= reach_rows; dr += stride_rows) {
+        for (int dc = -reach_columns / stride_columns * stride_columns; dc <= reach_columns; dc += stride_columns) {
+            if (dr == 0 && dc == 0) continue;
+            // Columns count to the right and rows down; offsets are positive left and up.
+            const double x = -dc * column_pitch, y = -dr * row_pitch / ellipticity;
+            if (x * x + y * y <= r_max * r_max) neighbours_.push_back({dr, dc, x, y});
+        }
+    }
+    // Where no neighbour reaches half-way to the footprint's edge in some direction (the raster's
+    // border, or a raster sparser than its footprints), an extra probe at 3/4 of the way does.
+    const double reach = 0.75 * r_max;
+    extra_offsets_ = {Eigen::Vector2d(reach, 0.0), Eigen::Vector2d(-reach, 0.0), Eigen::Vector2d(0.0, reach),
+                      Eigen::Vector2d(0.0, -reach)};
+    extra_mask_.assign(static_cast<std::size_t>(raster_.beam_count()), 0);
+    for (int row = 0; row < raster_.rows(); ++row) {
+        for (int column = 0; column < raster_.columns(); ++column) {
+            std::uint8_t covered = 0;
+            for (const Neighbour& n : neighbours_) {
+                const int r = row + n.d_row, c = column + n.d_column;
+                if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
+                for (int k = 0; k < 4; ++k)
+                    if (Eigen::Vector2d(n.x_rad, n.y_rad).dot(extra_offsets_[k].normalized()) >= 0.5 * r_max)
+                        covered |= static_cast<std::uint8_t>(1u << k);
+            }
+            extra_mask_[static_cast<std::size_t>(row * raster_.columns() + column)] = static_cast<std::uint8_t>(~covered & 0xFu);
+        }
+    }
+}
 
 double FrameRenderer::frame_start_s(std::uint64_t index) const {
     return scenario_.render.start_time_s + static_cast<double>(index) / scenario_.sensor.frame_rate_hz;
@@ -92,110 +113,85 @@ GimbalPointing FrameRenderer::gimbal_pointing(std::uint64_t index) {
     return pointing_by_frame_[index];
 }
 
+BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const {
+    BeamAim a;
+    a.world_from_beam = scenario_.mount.world_from_sensor().linear() *
+                        sensor_from_beam(pointing, beam.az_offset_rad, beam.el_offset_rad);
+    a.time_s = frame_start_s + beam.time_offset_s;
+    a.cell = static_cast<std::uint32_t>(beam.row * raster_.columns() + step);  // keys the beam's random draws
+    return a;
+}
+
+std::uint64_t FrameRenderer::probe_row(int row, GimbalPointing pointing, double frame_start_s) {
+    thread_local std::vector<raytrace::Ray> rays;
+    thread_local std::vector<std::optional<raytrace::Hit>> hits;
+    thread_local std::vector<std::optional<raytrace::Hit>*> slots;
+    rays.clear();
+    slots.clear();
+    auto add = [&](const Eigen::Vector3d& direction, double time_s, std::optional<raytrace::Hit>* slot) {
+        raytrace::Ray r;
+        r.origin_world = scenario_.mount.position_world;
+        r.direction = direction;
+        r.time_s = time_s;
+        r.max_range_m = scenario_.sensor.max_range_m;
+        rays.push_back(r);
+        slots.push_back(slot);
+    };
+    for (int step = 0; step < raster_.columns(); ++step) {
+        const RasterBeam beam = raster_.beam(row, step);
+        const BeamAim a = aim(beam, step, pointing, frame_start_s);
+        const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
+        axis_direction_[cell] = a.world_from_beam.col(0);
+        add(axis_direction_[cell], a.time_s, &axis_hit_[cell]);
+        for (int k = 0; k < 4; ++k) {
+            if (!(extra_mask_[cell] & (1u << k))) continue;
+            extra_direction_[4 * cell + k] = a.world_from_beam * integrator_.in_beam(extra_offsets_[k].x(), extra_offsets_[k].y());
+            add(extra_direction_[4 * cell + k], a.time_s, &extra_hit_[4 * cell + k]);
+        }
+    }
+    hits.resize(rays.size());
+    traced_.trace(rays, hits);
+    for (std::size_t i = 0; i < rays.size(); ++i) *slots[i] = hits[i];
+    return rays.size();
+}
+
 std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, double frame_start_s,
-                                             std::uint64_t frame) const {
+                                             std::uint64_t frame, std::uint64_t& rays) const {
     const auto& sensor = scenario_.sensor;
-    const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor();
-    const int samples = footprint_.samples();
-    // The footprint is round in units of the azimuth divergence; elliptical beams stretch it in elevation.
-    const double ellipticity = sensor.divergence_el_mrad / sensor.divergence_mrad;
-    std::vector<SubRay> sub_rays(static_cast<std::size_t>(samples));
-    std::vector<double> uniforms(2 * static_cast<std::size_t>(samples));
-    std::vector<raytrace::Ray> rays(static_cast<std::size_t>(samples));
-    std::vector<std::optional<raytrace::Hit>> hits(static_cast<std::size_t>(samples));
-    std::vector<SubRayHit> surface_hits;
-    surface_hits.reserve(static_cast<std::size_t>(samples));
-    std::vector<Return> returns;
-    const double pulse_energy_j = sensor.pulse_energy_j();
-    const double aperture_area_m2 = sensor.aperture_area_m2();
+    const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
     const double photoelectrons_per_joule = sensor.responsivity_a_per_w / kElementaryCharge_c;
+    thread_local std::vector<Probe> probes;
+    thread_local BeamEchoes echoes;
+    std::vector<Return> returns;
 
     for (int step = 0; step < raster_.columns(); ++step) {
-        const int cell_index = row * raster_.columns() + step;  // keys the beam's random draws
         const RasterBeam beam = raster_.beam(row, step);
-        const Eigen::Matrix3d sensor_from_beam_m = sensor_from_beam(pointing, beam.az_offset_rad, beam.el_offset_rad);
-        const Eigen::Matrix3d world_from_beam = world_from_sensor.linear() * sensor_from_beam_m;
-        const double time_s = frame_start_s + beam.time_offset_s;
-
-        if (scenario_.render.jitter) {
-            for (int i = 0; i < samples; ++i) {
-                const auto u = uniform4(scenario_.render.seed, RandomStream::footprint_jitter, frame,
-                                        static_cast<std::uint32_t>(cell_index), static_cast<std::uint32_t>(i));
-                uniforms[2 * i] = u[0];
-                uniforms[2 * i + 1] = u[1];
+        const BeamAim a = aim(beam, step, pointing, frame_start_s);
+        probes.clear();
+        if (integrator_.adaptive()) {
+            const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
+            probes.push_back({0.0, 0.0, axis_direction_[cell], &axis_hit_[cell]});
+            for (const Neighbour& n : neighbours_) {
+                const int r = row + n.d_row, c = beam.column + n.d_column;
+                if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
+                const std::size_t other = static_cast<std::size_t>(r * raster_.columns() + c);
+                probes.push_back({n.x_rad, n.y_rad, axis_direction_[other], &axis_hit_[other]});
             }
-            footprint_.jittered(sub_rays, uniforms);
-        } else {
-            footprint_.fixed(sub_rays);
+            for (int k = 0; k < 4; ++k) {
+                if (!(extra_mask_[cell] & (1u << k))) continue;
+                probes.push_back({extra_offsets_[k].x(), extra_offsets_[k].y(), extra_direction_[4 * cell + k],
+                                  &extra_hit_[4 * cell + k]});
+            }
         }
-        for (int i = 0; i < samples; ++i) {
-            const Eigen::Vector3d in_beam(1.0, std::tan(sub_rays[i].offset_x_rad),
-                                          std::tan(sub_rays[i].offset_y_rad * ellipticity));
-            rays[i].origin_world = scenario_.mount.position_world;
-            rays[i].direction = (world_from_beam * in_beam).normalized();
-            rays[i].time_s = time_s;
-            rays[i].max_range_m = sensor.max_range_m;
-        }
-        traced_.trace(rays, hits);
+        integrator_.integrate(a, probes, frame, echoes);
+        rays += static_cast<std::uint64_t>(echoes.rays);
+        std::vector<BeamSurface> surfaces = gather_surfaces(echoes.surface, sensor.return_gap_m);
+        for (BeamSurface& v : echoes.volume) surfaces.push_back(std::move(v));
 
-        surface_hits.clear();
-        std::vector<BeamSurface> volume_surfaces;
-        RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame,
-                                    static_cast<std::uint32_t>(cell_index));
-        for (int i = 0; i < samples; ++i) {
-            std::vector<raytrace::VolumeSegment> volumes;
-            if (traced_.has_volumes()) {
-                volumes = traced_.volumes_along(rays[i]);
-                add_volume_echoes(volumes, hits[i] ? hits[i]->range_m : sensor.max_range_m,
-                                  pulse_energy_j * sub_rays[i].weight * sensor.optics_efficiency, sub_rays[i].weight,
-                                  aperture_area_m2, receiver_, volume_draws, volume_surfaces);
-            }
-            if (!hits[i]) continue;
-            const auto& h = *hits[i];
-            const double t = receiver_.transmission(h.range_m);
-            const double fog = std::exp(-2.0 * optical_depth(volumes, h.range_m));
-            const double energy = lambertian_echo_energy_j(pulse_energy_j, sub_rays[i].weight, sensor.optics_efficiency,
-                                                           t * t * fog, h.reflectance, h.cos_incidence, aperture_area_m2,
-                                                           h.range_m);
-            surface_hits.push_back({h.range_m, sub_rays[i].weight, energy, h.object_id,
-                                    rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
-        }
-        std::sort(surface_hits.begin(), surface_hits.end(),
-                  [](const SubRayHit& a, const SubRayHit& b) { return a.range_m < b.range_m; });
-
-        // One BeamSurface per run of hits on one surface, named after the object carrying most
-        // of its energy.
-        std::vector<BeamSurface> surfaces;
-        for (std::size_t first = 0; first < surface_hits.size();) {
-            std::size_t last = first + 1;
-            while (last < surface_hits.size() && same_surface(surface_hits[last - 1], surface_hits[last], sensor.return_gap_m)) {
-                ++last;
-            }
-            BeamSurface surface;
-            bool one_object = true;
-            for (std::size_t k = first; k < last; ++k) {
-                surface.weight += surface_hits[k].weight;
-                surface.echoes.push_back({surface_hits[k].range_m, surface_hits[k].energy_j, 0});
-                one_object = one_object && surface_hits[k].object_id == surface_hits[first].object_id;
-            }
-            surface.object_id = surface_hits[first].object_id;
-            if (!one_object) {  // rare (objects within return_gap_m of each other): tally per object
-                std::map<std::uint32_t, double> energy_by_object;
-                for (std::size_t k = first; k < last; ++k) energy_by_object[surface_hits[k].object_id] += surface_hits[k].energy_j;
-                surface.object_id = std::max_element(energy_by_object.begin(), energy_by_object.end(),
-                                                      [](const auto& a, const auto& b) { return a.second < b.second; })
-                                        ->first;
-            }
-            surfaces.push_back(std::move(surface));
-            first = last;
-        }
-
-        for (BeamSurface& v : volume_surfaces) surfaces.push_back(std::move(v));
-
-        const Eigen::Vector3d axis_sensor = sensor_from_beam_m.col(0);
+        const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);
-        const BeamKey key{scenario_.render.seed, frame, static_cast<std::uint32_t>(cell_index)};
+        const BeamKey key{scenario_.render.seed, frame, a.cell};
         std::uint8_t return_index = 0;
         for (const DetectedReturn& d : receiver_.receive(std::move(surfaces), key)) {
             Return r;
@@ -203,7 +199,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
             r.position_sensor = (axis_sensor * r.range_m).cast<float>();
             r.intensity = static_cast<float>(d.energy_j * photoelectrons_per_joule);
             r.snr = static_cast<float>(d.snr);
-            r.time_s = time_s;
+            r.time_s = a.time_s;
             r.beam_az_rad = static_cast<float>(beam_angles.az_rad);
             r.beam_el_rad = static_cast<float>(beam_angles.el_rad);
             r.column = static_cast<std::uint16_t>(beam.column);
@@ -262,10 +258,25 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
 
     traced_.set_time_window(frame.start_time_s, frame.end_time_s, scenario_.render.motion_steps);
 
-    std::vector<std::vector<Return>> by_row(static_cast<std::size_t>(raster_.rows()));
+    const std::size_t rows = static_cast<std::size_t>(raster_.rows());
+    std::vector<std::uint64_t> rays_by_row(rows, 0);
+    if (integrator_.adaptive()) {
+        const std::size_t cells = static_cast<std::size_t>(raster_.beam_count());
+        axis_direction_.resize(cells);
+        axis_hit_.resize(cells);
+        extra_direction_.resize(4 * cells);
+        extra_hit_.resize(4 * cells);
+        tbb::parallel_for(0, raster_.rows(), [&](int row) {
+            rays_by_row[static_cast<std::size_t>(row)] = probe_row(row, pointing, frame.start_time_s);
+        });
+    }
+    std::vector<std::vector<Return>> by_row(rows);
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
-        by_row[static_cast<std::size_t>(row)] = trace_row(row, pointing, frame.start_time_s, index);
+        by_row[static_cast<std::size_t>(row)] =
+            trace_row(row, pointing, frame.start_time_s, index, rays_by_row[static_cast<std::size_t>(row)]);
     });
+    rays_last_frame_ = 0;
+    for (const std::uint64_t r : rays_by_row) rays_last_frame_ += r;
     std::size_t total = 0;
     for (const auto& r : by_row) total += r.size();
     frame.returns.reserve(total);

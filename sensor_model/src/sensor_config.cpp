@@ -129,7 +129,8 @@ SensorConfig read_sensor_config(JsonFields& sensor) {
     c.gimbal_el_min_deg = sensor.number("gimbal_el_min_deg", -90.0, 90.0, c.gimbal_el_min_deg);
     c.gimbal_el_max_deg = sensor.number("gimbal_el_max_deg", -90.0, 90.0, c.gimbal_el_max_deg);
     c.gimbal_slew_rate_dps = sensor.number("gimbal_slew_rate_dps", 0.0, 1e4, c.gimbal_slew_rate_dps);
-    c.footprint_samples = static_cast<int>(sensor.integer("footprint_samples", 1, 4096, c.footprint_samples));
+    c.footprint_samples = static_cast<int>(sensor.integer("footprint_samples", 0, 4096, c.footprint_samples));
+    c.footprint_tolerance = sensor.number("footprint_tolerance", 1e-4, 1.0, c.footprint_tolerance);
     c.footprint_truncation = sensor.number("footprint_truncation", 0.1, 4.0, c.footprint_truncation);
     c.return_gap_m = sensor.number("return_gap_m", 0.0, 1e3, c.return_gap_m);
     c.peak_power_w = sensor.number("peak_power_w", 1e-6, 1e12, c.peak_power_w);
@@ -176,6 +177,7 @@ nlohmann::json to_json(const SensorConfig& c) {
         {"gimbal_el_max_deg", c.gimbal_el_max_deg},
         {"gimbal_slew_rate_dps", c.gimbal_slew_rate_dps},
         {"footprint_samples", c.footprint_samples},
+        {"footprint_tolerance", c.footprint_tolerance},
         {"footprint_truncation", c.footprint_truncation},
         {"return_gap_m", c.return_gap_m},
         {"peak_power_w", c.peak_power_w},

@@ -5,11 +5,24 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "ladarsim/raytrace/hit.h"
 #include "ladarsim/scene/scene.h"
 
 namespace ladarsim::raytrace {
+
+/// Where an object's mesh is for a ray of a given time: its model-space box, the affine map Embree
+/// applies to it then, and a sphere holding it.
+struct ObjectBounds {
+    std::uint32_t object_id = 0;
+    Eigen::AlignedBox3d box_model;
+    Eigen::Matrix<double, 3, 4> world_from_model = Eigen::Matrix<double, 3, 4>::Identity();
+    Eigen::Vector3d centre_world = Eigen::Vector3d::Zero();
+    double radius_m = 0.0;
+    bool moving = false;  ///< traced with motion blur
+    bool volume = false;  ///< a medium (fog, cloud), seen only by volumes_along()
+};
 
 /// A scene.Scene inside Embree. Each object's mesh becomes one BVH, built once; each object is an
 /// instance of it, with Embree motion-blur time steps when its trajectory moves, so that a ray
@@ -40,6 +53,12 @@ public:
     /// must be closed and face outwards: a ray that first meets a back face started inside.
     std::vector<VolumeSegment> volumes_along(const Ray& ray) const;
     bool has_volumes() const;
+
+    /// The bounds of every mesh object (not the background map) for a ray emitted at `time_s`: a
+    /// moving object's transform is the same linear interpolation between motion steps that Embree
+    /// applies (it can only shrink the mesh, never grow it, so the sphere still holds it). Fills
+    /// `out` in the scene's object order.
+    void object_bounds(double time_s, std::vector<ObjectBounds>& out) const;
 
     const Eigen::Vector3d& origin_world() const;
 

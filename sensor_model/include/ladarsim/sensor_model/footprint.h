@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -12,23 +13,43 @@ struct SubRay {
     double weight = 0.0;        ///< fraction of the beam's energy; the weights of a beam sum to 1
 };
 
+/// A box in the footprint's polar energy coordinates: the enclosed-energy fraction of the
+/// untruncated beam, F(r) = 1 - exp(-2 r^2 / w^2), in [energy_lo, energy_hi], times the angle in
+/// [angle_lo, angle_hi] (angle_hi - angle_lo <= 2 pi; angles may exceed 2 pi). In these coordinates
+/// the Gaussian is uniform, so a box's energy is its area.
+struct FootprintRegion {
+    double energy_lo, energy_hi;
+    double angle_lo_rad, angle_hi_rad;
+};
+
+/// A rectangle of footprint offsets [x_lo, x_hi] x [y_lo, y_hi] (radians, footprint coordinates).
+struct FootprintRect {
+    double x_lo, x_hi, y_lo, y_hi;
+};
+
 /// The divergence footprint of one beam: a Gaussian irradiance profile
 ///   I(r) ~ exp(-2 r^2 / w^2),  w = divergence / 2  (the 1/e^2 radius, as an angle),
 /// truncated at r_max = truncation * w, holding F = 1 - exp(-2 truncation^2) of the energy
 /// (98.9 % at the default 1.5); the weights are renormalised to carry the whole pulse.
 ///
-/// Stratification: the truncated disc is cut into N = `samples` cells of equal energy, a grid
-/// in (enclosed energy, angle): round(sqrt(N)) rings of about sqrt(N) sectors each, each ring
-/// turned by the golden angle so cells do not line up radially. Since the energy enclosed
-/// within radius r is F(r) = 1 - exp(-2 r^2 / w^2), a ring holding cells k0..k1 spans the
-/// radii where F(r)/F(r_max) = k0/N .. k1/N: every weight is exactly 1/N.
-/// A sub-ray sits at the energy median of its cell (on the axis when N = 1), or, with jitter,
-/// at a point drawn from the Gaussian restricted to its cell (an unbiased estimate).
+/// Fixed-count stratification (`fixed`, `jittered`): the truncated disc is cut into N = `samples`
+/// cells of equal energy, a grid in (enclosed energy, angle): round(sqrt(N)) rings of about
+/// sqrt(N) sectors each, each ring turned by the golden angle so cells do not line up radially.
+/// A ring holding cells k0..k1 spans the radii where F(r)/F(r_max) = k0/N .. k1/N: every weight is
+/// exactly 1/N. A sub-ray sits at the energy median of its cell (on the axis when N = 1), or, with
+/// jitter, at a point drawn from the Gaussian restricted to its cell (an unbiased estimate).
+///
+/// Grids (`grid`): adaptive sampling cuts a region into an n x n grid of equal-energy cells, each
+/// sub-ray weighted by the exact energy of its cell: the whole footprint in (energy, angle), or a
+/// rectangle (the outline of a small target, so that sub-rays are spent only where it can be) in
+/// (x, y), where the Gaussian is separable; a rectangle cell whose sub-ray falls beyond the
+/// truncation radius is given weight 0.
 class Footprint {
 public:
     Footprint(double divergence_rad, int samples, double truncation);
 
     int samples() const { return static_cast<int>(cells_.size()); }
+    double waist_rad() const { return waist_rad_; }
     double max_offset_rad() const { return max_radius_rad_; }
 
     /// Fills `out` (size samples()) with the cell-median sub-rays.
@@ -36,16 +57,24 @@ public:
     /// Fills `out` with one jittered sub-ray per cell; u[i] are two uniforms in (0, 1] per cell.
     void jittered(std::span<SubRay> out, std::span<const double> uniforms) const;
 
+    /// The whole truncated footprint.
+    FootprintRegion whole() const;
+    /// n x n grid over a region, cell (i, j) at index i * n + j, sub-rays at the cell medians or
+    /// jittered when `uniforms` (two per cell) are given.
+    void grid(const FootprintRegion& region, int n, std::span<SubRay> out, std::span<const double> uniforms = {}) const;
+
+    /// A rectangle clipped to the square around the truncated footprint; empty when outside it.
+    std::optional<FootprintRect> clip(const FootprintRect& rect) const;
+    bool contains(const FootprintRect& rect, double x_rad, double y_rad) const;
+    void grid(const FootprintRect& rect, int n, std::span<SubRay> out, std::span<const double> uniforms = {}) const;
+
 private:
-    struct Cell {
-        double energy_lo, energy_hi;  ///< enclosed-energy fraction of the untruncated beam
-        double angle_lo_rad, angle_hi_rad;
-    };
-    SubRay place(const Cell& cell, double u_energy, double u_angle) const;
+    SubRay place(const FootprintRegion& cell, double u_energy, double u_angle, double weight) const;
 
     double waist_rad_;
     double max_radius_rad_;
-    std::vector<Cell> cells_;
+    double captured_;  ///< F(r_max)
+    std::vector<FootprintRegion> cells_;
 };
 
 }  // namespace ladarsim::sensor_model

@@ -1,11 +1,12 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/sensor_model/beam_receiver.h"
-#include "ladarsim/sensor_model/footprint.h"
+#include "ladarsim/sensor_model/footprint_integrator.h"
 #include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
 #include "ladarsim/sensor_model/gimbal.h"
@@ -13,10 +14,16 @@
 
 namespace ladarsim::sensor_model {
 
-/// Turns a scenario into frames: fires every beam of the raster at its own time, traces its
-/// footprint's sub-rays, gives each sub-ray its echo energy by the range equation, gathers the
-/// echoes into the distinct surfaces along the beam and hands them to the BeamReceiver, which
-/// reports what the detector sees (docs/physics.md).
+/// Turns a scenario into frames: fires every beam of the raster at its own time, integrates the
+/// echo energy over its footprint (FootprintIntegrator), gathers the echoes into the distinct
+/// surfaces along the beam and hands them to the BeamReceiver, which reports what the detector
+/// sees (docs/physics.md).
+///
+/// With adaptive footprints a frame takes two passes: first every beam's axis is traced (one
+/// coherent stream per raster line, plus extra probes where the raster leaves a footprint's edge
+/// uncovered), then each beam integrates its footprint knowing what its own and its neighbours'
+/// axes met: beams are much closer together than their footprints are wide, so those probes
+/// tell, for free, whether a footprint lies on one surface.
 ///
 /// Frames are independent given the scenario and seed (the gimbal's pointing is replayed from
 /// frame 0), and beams are traced in parallel with results that do not depend on thread count.
@@ -31,19 +38,38 @@ public:
     double frame_start_s(std::uint64_t index) const;
     GimbalPointing gimbal_pointing(std::uint64_t index);
     const GalvoRaster& raster() const { return raster_; }
+    /// Rays traced for the last frame rendered (probes and sub-rays): the cost of its accuracy.
+    std::uint64_t rays_last_frame() const { return rays_last_frame_; }
 
 private:
-    /// All returns of one raster line, in column order.
-    std::vector<Return> trace_row(int row, GimbalPointing pointing, double frame_start_s, std::uint64_t frame) const;
+    /// A neighbouring beam whose axis falls inside a beam's footprint: raster steps and offset.
+    struct Neighbour {
+        int d_row, d_column;
+        double x_rad, y_rad;
+    };
+    BeamAim aim(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const;
+    void find_neighbours();
+    /// Pass 1: the axes and extra probes of one raster line. Returns the rays traced.
+    std::uint64_t probe_row(int row, GimbalPointing pointing, double frame_start_s);
+    /// All returns of one raster line, in column order; adds the rays traced to `rays`.
+    std::vector<Return> trace_row(int row, GimbalPointing pointing, double frame_start_s, std::uint64_t frame,
+                                  std::uint64_t& rays) const;
     std::vector<GroundTruthObject> ground_truth(double time_s, const std::vector<Return>& returns) const;
     GimbalPointing cue_pointing(double time_s) const;
 
     const Scenario& scenario_;
     raytrace::TracedScene traced_;
     GalvoRaster raster_;
-    Footprint footprint_;
     BeamReceiver receiver_;
+    FootprintIntegrator integrator_;
     std::vector<GimbalPointing> pointing_by_frame_;
+    std::vector<Neighbour> neighbours_;
+    std::vector<std::uint8_t> extra_mask_;          ///< by raster cell (row, column): bit k = extra probe k
+    std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
+    // Pass 1 results, by raster cell (row, column); extra probes at 4 * cell + k.
+    std::vector<Eigen::Vector3d> axis_direction_, extra_direction_;
+    std::vector<std::optional<raytrace::Hit>> axis_hit_, extra_hit_;
+    std::uint64_t rays_last_frame_ = 0;
 };
 
 /// Centre of an object's model bounds in the world at `time_s`.

@@ -50,7 +50,11 @@ struct SensorConfig {
     double gimbal_el_max_deg = 90.0;
     double gimbal_slew_rate_dps = 16.0;
 
-    int footprint_samples = 16;          ///< sub-rays per beam
+    /// 0: adaptive footprints to `footprint_tolerance`; N > 0: N stratified sub-rays per beam
+    /// (brute force, the reference the adaptive integration is checked against).
+    int footprint_samples = 0;
+    /// Relative error allowed on each object's echo energy per beam (adaptive footprints).
+    double footprint_tolerance = 0.05;
     double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
     double return_gap_m = 0.15;          ///< surfaces closer than this along a beam merge (c * 1 ns / 2)
 

@@ -16,8 +16,8 @@ struct Echo {
     double range_m;          ///< as the receiver's clock sees it (folded when ranges fold)
     double energy_j;         ///< optical energy reaching the detector
     std::uint32_t surface;   ///< which surface of the beam it came from
-    /// Standard deviation along the range of a distributed echo (a fog or cloud return), 0 for a
-    /// surface: the pulse it makes is stretched accordingly.
+    /// Standard deviation along the range of a distributed echo (a fog or cloud return, or a patch
+    /// of surface integrated whole), 0 for a sub-ray's: the pulse it makes is stretched accordingly.
     double spread_m = 0.0;
 };
 

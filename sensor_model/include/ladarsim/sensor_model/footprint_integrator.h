@@ -1,0 +1,116 @@
+#pragma once
+// The energy a beam's footprint sends back, integrated over the scene with as few rays as the
+// requested accuracy allows (docs/physics.md, "Adaptive footprints").
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ladarsim/raytrace/traced_scene.h"
+#include "ladarsim/sensor_model/beam_receiver.h"
+#include "ladarsim/sensor_model/footprint.h"
+#include "ladarsim/sensor_model/scenario.h"
+
+namespace ladarsim::sensor_model {
+
+/// The echo of one sub-ray, or of a whole patch of one surface.
+struct SurfaceEcho {
+    double range_m;
+    double weight;    ///< share of the beam's energy
+    double energy_j;  ///< reaching the detector
+    double spread_m;  ///< standard deviation of the range across a patch; 0 for a sub-ray
+    std::uint32_t object_id;
+    Eigen::Vector3d point_world;
+    Eigen::Vector3f normal_world;
+};
+
+/// Groups echoes (sorted here by range) into the distinct surfaces along a beam. Two neighbours in
+/// range are one surface when within `gap_m`, or when they lie on one object's locally continuous
+/// surface: each within the gap of the other's tangent plane (a surface seen at grazing incidence
+/// spans metres in range and would otherwise break into one return per sub-ray). A surface is
+/// named after the object carrying most of its energy.
+std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m);
+
+/// Where one beam points and when it fires.
+struct BeamAim {
+    Eigen::Matrix3d world_from_beam;  ///< x along the beam, y left, z up
+    double time_s;
+    std::uint32_t cell;               ///< raster cell index: keys the beam's random draws
+};
+
+/// A ray traced ahead for a beam: the beam's own axis, a neighbouring beam's axis that falls
+/// inside its footprint, or an extra ray where the raster leaves the footprint uncovered.
+struct Probe {
+    double x_rad, y_rad;  ///< offset from the beam axis, in footprint coordinates
+    Eigen::Vector3d direction_world;
+    const std::optional<raytrace::Hit>* hit;
+};
+
+/// What one beam met, before the receiver.
+struct BeamEchoes {
+    std::vector<SurfaceEcho> surface;
+    std::vector<BeamSurface> volume;
+    int rays = 0;  ///< traced for this beam after its probes (a measure of cost)
+};
+
+/// Integrates footprints in one of two ways:
+///  - fixed: `footprint_samples` stratified sub-rays per beam (the brute-force reference);
+///  - adaptive (footprint_samples = 0): probes (the beam's axis and its neighbours' axes) decide
+///    whether the footprint lies on one plane, then integrated without rays; objects small enough
+///    to hide between probes, or moving, are found by testing the beam's cone against their
+///    bounding spheres and sampled only inside the part of the footprint they can occupy; media are
+///    sampled only where the cone meets them. Where sampling is needed, a grid of 4 x 4 cells is
+///    refined (x 4) until two interleaved half-grids agree on each object's energy within
+///    `footprint_tolerance`.
+class FootprintIntegrator {
+public:
+    FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced, const BeamReceiver& receiver);
+
+    bool adaptive() const { return adaptive_; }
+    const Footprint& footprint() const { return footprint_; }
+    /// Footprint coordinates of a direction given in beam coordinates (x along the beam).
+    Eigen::Vector2d offset_of(const Eigen::Vector3d& in_beam) const;
+    /// Beam coordinates of a footprint offset.
+    Eigen::Vector3d in_beam(double x_rad, double y_rad) const;
+
+    /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
+    void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
+
+    /// Energy a sampled region sent back from one object, in two interleaved halves of its cells.
+    struct Tally {
+        std::uint32_t object_id;
+        double even, odd;
+    };
+
+private:
+    /// Samples `region` (minus `excluded`) until converged. With `share` > 0 the sampled cells carry
+    /// that share of the beam, otherwise their own energy. Returns the share sampled.
+    template <class Region>
+    double sample(const BeamAim& aim, const Region& region, const std::optional<FootprintRect>& excluded, double share,
+                  bool media, std::uint64_t frame, BeamEchoes& out) const;
+    /// Traces sub-rays, appending their echoes, and tallies each object's energy by the cell
+    /// `parity` of the sub-rays that met it.
+    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, std::span<const std::uint8_t> parity, bool media,
+               std::uint64_t frame, std::uint32_t first_sample, BeamEchoes& out, std::vector<Tally>* tally) const;
+    enum class Patch { empty, plane, mixed };
+    /// The footprint outside `excluded` (share `weight`) as one plane, from the probes outside it.
+    Patch plane_patch(const BeamAim& aim, std::span<const Probe> probes, const std::optional<FootprintRect>& excluded,
+                      double weight, BeamEchoes& out) const;
+    double echo_energy_j(double weight, double reflectance, double cos_incidence, double range_m, double fog) const;
+
+    const Scenario& scenario_;
+    const raytrace::TracedScene& traced_;
+    const BeamReceiver& receiver_;
+    bool adaptive_;
+    double tolerance_;
+    double floor_energy_j_;     ///< errors far below the detection threshold change nothing
+    double ellipticity_;
+    double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
+    Footprint footprint_;
+    std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
+    std::vector<double> quadrature_x_, quadrature_y_;
+};
+
+}  // namespace ladarsim::sensor_model
