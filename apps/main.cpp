@@ -1,6 +1,7 @@
 // The ladarsim command line: parses arguments and calls the libraries, nothing more.
 #include <cstdio>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "ladarsim/bench/benchmarks.h"
 #include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/scene/input_error.h"
@@ -130,6 +132,16 @@ int main(int argc, char** argv) {
     auto* assets = app.add_subcommand("make-assets", "Write the procedural glTF models ladarsim ships");
     assets->add_option("dir", assets_dir, "Output directory")->required();
 
+    bench::BenchOptions bench_options;
+    std::string bench_json;
+    auto* bench_cmd = app.add_subcommand(
+        "bench", "Measure speed against accuracy: our render against raw Embree on the same rays, the real-time factor "
+                 "of the default scenario at each accuracy, beams/s against point-count/energy/range error for a drone "
+                 "at 200, 1000, 2000 m, and scaling with beams, triangles and map points (plot: scripts/plot_bench.py)");
+    bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about a minute)");
+    bench_cmd->add_option("--json", bench_json, "Write every figure to this JSON file");
+    bench_cmd->add_option("--scenario", bench_options.scenario, "Scenario to time")->check(CLI::ExistingFile)->capture_default_str();
+
     CLI11_PARSE(app, argc, argv);
     spdlog::set_pattern("%^%l%$: %v");
 
@@ -159,6 +171,23 @@ int main(int argc, char** argv) {
                 return 130;
             }
             print_summary(scenario, summary);
+        } else if (*bench_cmd) {
+            const auto start = std::chrono::steady_clock::now();
+            bench_options.progress = [start](const std::string& step) {
+                std::fprintf(stderr, "[%5.0f s] %s\n",
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), step.c_str());
+            };
+            const nlohmann::json result = bench::run_benchmarks(bench_options);
+            std::printf("pipeline vs raw Embree (rays/s, same rays): %.2f\n", result["pipeline_vs_raw_embree"].get<double>());
+            std::printf("real-time factor (default accuracy, vs %.0f beams/s): %.1f\n", bench::sensor_beams_per_second(),
+                        result["realtime_factor"].get<double>());
+            std::printf("target point-count error vs converged reference: %+.2f %%\n", result["count_error_pct"].get<double>());
+            if (!bench_json.empty()) {
+                sensor_model::write_json(bench_json, result);
+                std::printf("wrote %s\n", bench_json.c_str());
+            } else {
+                std::cout << result.dump(2) << "\n";
+            }
         } else if (*show) {
             std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
         } else if (*table1) {

@@ -84,6 +84,24 @@ struct TracedScene::Impl {
 
     std::mutex error_mutex;
     std::string last_error;
+    std::mutex log_mutex;
+    std::vector<std::vector<Ray>>* ray_log = nullptr;
+
+    void log(std::span<const Ray> rays) {
+        if (!ray_log) return;
+        const std::lock_guard lock(log_mutex);
+        ray_log->emplace_back(rays.begin(), rays.end());
+    }
+
+    // The sub-rays of one beam leave one point in nearly one direction: a coherent stream.
+    void intersect(std::span<const Ray> rays, std::vector<RTCRayHit>& buffer) const {
+        buffer.resize(rays.size());
+        for (std::size_t i = 0; i < rays.size(); ++i) to_embree(rays[i], buffer[i]);
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcIntersect1M(top.get(), &context, buffer.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
+    }
 
     static void on_error(void* user, RTCError, const char* message) {
         auto* self = static_cast<Impl*>(user);
@@ -412,24 +430,29 @@ std::optional<Hit> TracedScene::trace(const Ray& ray) const {
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
     impl_->to_embree(ray, rh);
+    impl_->log({&ray, 1});
     rtcIntersect1(impl_->top.get(), &context, &rh);
     return impl_->to_hit(ray, rh);
 }
 
 void TracedScene::trace(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const {
     if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace: rays and results differ in size");
+    impl_->log(rays);
     // Reused per thread: a frame traces one small stream per beam, and allocating each time costs
     // as much as tracing it.
     thread_local std::vector<RTCRayHit> buffer;
-    buffer.resize(rays.size());
-    RTCRayHit* rh = buffer.data();
-    for (std::size_t i = 0; i < rays.size(); ++i) impl_->to_embree(rays[i], rh[i]);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    // The sub-rays of one beam leave one point in nearly one direction: a coherent stream.
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1M(impl_->top.get(), &context, rh, static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
-    for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], rh[i]);
+    impl_->intersect(rays, buffer);
+    for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], buffer[i]);
+}
+
+void TracedScene::record_rays(std::vector<std::vector<Ray>>* log) { impl_->ray_log = log; }
+
+std::size_t TracedScene::intersect_only(std::span<const Ray> rays) const {
+    thread_local std::vector<RTCRayHit> buffer;
+    impl_->intersect(rays, buffer);
+    std::size_t hits = 0;
+    for (const RTCRayHit& rh : buffer) hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    return hits;
 }
 
 const Eigen::Vector3d& TracedScene::origin_world() const { return impl_->origin_world; }

@@ -12,8 +12,8 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
 
-/// Inverse of the standard normal CDF: Acklam's rational approximation (relative error 1e-9),
-/// polished by one Halley step to full double precision.
+/// Inverse of the standard normal CDF: Acklam's rational approximation, relative error below
+/// 1.2e-9 (a sub-ray placed within a nanoradian is placed).
 double inverse_normal_cdf(double p) {
     static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
                                    1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
@@ -24,23 +24,15 @@ double inverse_normal_cdf(double p) {
     static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                                    3.754408661907416e+00};
     constexpr double p_low = 0.02425;
-    double x;
-    if (p < p_low) {
-        const double q = std::sqrt(-2.0 * std::log(p));
-        x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
-    } else if (p <= 1.0 - p_low) {
-        const double q = p - 0.5, r = q * q;
-        x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-            (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
-    } else {
-        const double q = std::sqrt(-2.0 * std::log1p(-p));
-        x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+    if (p < p_low || p > 1.0 - p_low) {
+        const double q = std::sqrt(-2.0 * std::log(p < p_low ? p : 1.0 - p));
+        const double x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+                         ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+        return p < p_low ? x : -x;
     }
-    const double e = normal_cdf(x) - p;
-    const double u = e * std::sqrt(kTwoPi) * std::exp(0.5 * x * x);
-    return x - u / (1.0 + 0.5 * x * u);
+    const double q = p - 0.5, r = q * q;
+    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+           (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
 }
 }  // namespace
 

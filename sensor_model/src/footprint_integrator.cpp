@@ -82,6 +82,7 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
                       (receiver.apd().amps_per_watt() * receiver.waveform().pulse().peak_per_joule())),
       ellipticity_(scenario.sensor.divergence_el_mrad / scenario.sensor.divergence_mrad),
       small_object_rad_(0.0),
+      aperture_radius2_(scenario.sensor.aperture_area_m2() / std::numbers::pi),
       footprint_(scenario.sensor.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.sensor.footprint_samples,
                  scenario.sensor.footprint_truncation) {
     small_object_rad_ = kSmallObjectFootprints * footprint_.max_offset_rad();
@@ -102,6 +103,11 @@ Eigen::Vector2d FootprintIntegrator::offset_of(const Eigen::Vector3d& v) const {
 Eigen::Vector3d FootprintIntegrator::in_beam(double x_rad, double y_rad) const {
     // The footprint is round in units of the azimuth divergence; elliptical beams stretch it in elevation.
     return Eigen::Vector3d(1.0, std::tan(x_rad), std::tan(y_rad * ellipticity_)).normalized();
+}
+
+double FootprintIntegrator::irradiance(double x_rad, double y_rad) const {
+    const double w = footprint_.waist_rad();
+    return std::exp(-2.0 * (x_rad * x_rad + y_rad * y_rad) / (w * w));
 }
 
 double FootprintIntegrator::echo_energy_j(double weight, double reflectance, double cos_incidence, double range_m,
@@ -145,8 +151,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     const double r_max = footprint_.max_offset_rad();
     bool media = false;
-    int targets = 0;
-    std::optional<FootprintRect> target;
+    std::optional<FootprintRect> targets;  ///< the outline of every small or moving object met
     for (const raytrace::ObjectBounds& b : objects) {
         const Eigen::Vector3d v = beam_from_world * (b.centre_world - origin);
         const double distance = v.norm();
@@ -164,7 +169,6 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
             media = true;
             continue;
         }
-        ++targets;
         // The outline of the object's box as the beam sees it: its eight corners' offsets.
         FootprintRect outline{r_max, -r_max, r_max, -r_max};
         bool in_front = !inside;
@@ -183,24 +187,25 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
             const double pad = 0.01 * std::max(outline.x_hi - outline.x_lo, outline.y_hi - outline.y_lo) + 1e-9;
             outline = {outline.x_lo - pad, outline.x_hi + pad, outline.y_lo - pad, outline.y_hi + pad};
         }
-        target = footprint_.clip(outline);
-        if (!target) --targets;
+        const std::optional<FootprintRect> seen = footprint_.clip(outline);
+        if (!seen) continue;
+        // Several at once (rare): one rectangle around them all.
+        targets = targets ? FootprintRect{std::min(targets->x_lo, seen->x_lo), std::max(targets->x_hi, seen->x_hi),
+                                          std::min(targets->y_lo, seen->y_lo), std::max(targets->y_hi, seen->y_hi)}
+                          : *seen;
     }
 
+    // Targets are sampled where they can be; the rest of the footprint, like a footprint without
+    // targets, is one plane patch when the probes agree, and sampled otherwise (always in media).
     const FootprintRegion whole = footprint_.whole();
-    if (media || targets > 1) {
+    if (targets) {
+        const double rest = 1.0 - sample(aim, *targets, std::nullopt, 0.0, media, frame, out);
+        if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed))
+            sample(aim, whole, targets, rest, media, frame, out);
+        return;
+    }
+    if (media || plane_patch(aim, probes, std::nullopt, 1.0, out) == Patch::mixed)
         sample(aim, whole, std::nullopt, 1.0, media, frame, out);
-        return;
-    }
-    if (targets == 1) {
-        const double rest = 1.0 - sample(aim, *target, std::nullopt, 0.0, false, frame, out);
-        if (rest > 1e-9 && plane_patch(aim, probes, target, rest, out) == Patch::mixed) {
-            sample(aim, whole, target, rest, false, frame, out);
-        }
-        return;
-    }
-    if (plane_patch(aim, probes, std::nullopt, 1.0, out) == Patch::mixed)
-        sample(aim, whole, std::nullopt, 1.0, false, frame, out);
 }
 
 template <class Region>
@@ -299,7 +304,6 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
                                                             const std::optional<FootprintRect>& excluded,
                                                             double weight, BeamEchoes& out) const {
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
-    const double waist = footprint_.waist_rad();
     // The probes outside the excluded part speak for the patch, each weighted by the beam's
     // irradiance where it points.
     thread_local std::vector<const Probe*> used;
@@ -318,7 +322,7 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
         const raytrace::Hit& h = **p.hit;
         if (hits++ == 0) object_id = h.object_id;
         one_object = one_object && h.object_id == object_id;
-        const double g = std::exp(-2.0 * (p.x_rad * p.x_rad + p.y_rad * p.y_rad) / (waist * waist));
+        const double g = p.irradiance;
         gauss.push_back(g);
         normal_sum += g * h.normal_world.cast<double>();
         point_sum += g * (origin + h.range_m * p.direction_world);
@@ -365,7 +369,9 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
         const double nd = normal.dot(d);
         const double range = plane_distance / nd;
         if (!(range > 0.0) || range > scenario_.sensor.max_range_m) return Patch::mixed;
-        const double e = echo_energy_j(1.0, reflectance, std::abs(nd), range, 1.0);
+        // Clear-air transmission is applied below at the patch's mean range: across a footprint
+        // it changes by exp(-2 alpha dR), a fraction of a percent even at grazing incidence.
+        const double e = std::abs(nd) / (range * range + aperture_radius2_);
         e_sum += e;
         et_sum += e * range;
         et2_sum += e * range * range;
@@ -374,7 +380,8 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     if (nodes == 0) return Patch::mixed;
     const double range = et_sum / e_sum;
     const double spread = std::sqrt(std::max(0.0, et2_sum / e_sum - range * range));
-    const double energy = q_mean * weight * e_sum / nodes;
+    const double energy = q_mean * echo_energy_j(weight, reflectance, 1.0, range, 1.0) *
+                          (range * range + aperture_radius2_) * e_sum / nodes;
     out.surface.push_back({range, weight, energy, spread, object_id, origin + range * aim.world_from_beam.col(0),
                            normal.cast<float>()});
     return Patch::plane;

@@ -58,7 +58,7 @@ void FrameRenderer::find_neighbours() {
             if (dr == 0 && dc == 0) continue;
             // Columns count to the right and rows down; offsets are positive left and up.
             const double x = -dc * column_pitch, y = -dr * row_pitch / ellipticity;
-            if (x * x + y * y <= r_max * r_max) neighbours_.push_back({dr, dc, x, y});
+            if (x * x + y * y <= r_max * r_max) neighbours_.push_back({dr, dc, x, y, integrator_.irradiance(x, y)});
         }
     }
     // Where no neighbour reaches half-way to the footprint's edge in some direction (the raster's
@@ -66,6 +66,7 @@ void FrameRenderer::find_neighbours() {
     const double reach = 0.75 * r_max;
     extra_offsets_ = {Eigen::Vector2d(reach, 0.0), Eigen::Vector2d(-reach, 0.0), Eigen::Vector2d(0.0, reach),
                       Eigen::Vector2d(0.0, -reach)};
+    extra_irradiance_ = integrator_.irradiance(reach, 0.0);
     extra_mask_.assign(static_cast<std::size_t>(raster_.beam_count()), 0);
     for (int row = 0; row < raster_.rows(); ++row) {
         for (int column = 0; column < raster_.columns(); ++column) {
@@ -171,17 +172,17 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
         probes.clear();
         if (integrator_.adaptive()) {
             const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
-            probes.push_back({0.0, 0.0, axis_direction_[cell], &axis_hit_[cell]});
+            probes.push_back({0.0, 0.0, 1.0, axis_direction_[cell], &axis_hit_[cell]});
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = beam.column + n.d_column;
                 if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
                 const std::size_t other = static_cast<std::size_t>(r * raster_.columns() + c);
-                probes.push_back({n.x_rad, n.y_rad, axis_direction_[other], &axis_hit_[other]});
+                probes.push_back({n.x_rad, n.y_rad, n.irradiance, axis_direction_[other], &axis_hit_[other]});
             }
             for (int k = 0; k < 4; ++k) {
                 if (!(extra_mask_[cell] & (1u << k))) continue;
-                probes.push_back({extra_offsets_[k].x(), extra_offsets_[k].y(), extra_direction_[4 * cell + k],
-                                  &extra_hit_[4 * cell + k]});
+                probes.push_back({extra_offsets_[k].x(), extra_offsets_[k].y(), extra_irradiance_,
+                                  extra_direction_[4 * cell + k], &extra_hit_[4 * cell + k]});
             }
         }
         integrator_.integrate(a, probes, frame, echoes);

@@ -62,6 +62,12 @@ public:
 
     const Eigen::Vector3d& origin_world() const;
 
+    /// For benchmarks: from now on every traced batch of rays is appended to `log` (null: stop).
+    void record_rays(std::vector<std::vector<Ray>>* log);
+    /// For benchmarks: Embree's traversal alone on this scene, as trace() calls it but without
+    /// making hit records. Returns the number of hits.
+    std::size_t intersect_only(std::span<const Ray> rays) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

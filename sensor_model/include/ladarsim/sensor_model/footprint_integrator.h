@@ -44,6 +44,7 @@ struct BeamAim {
 /// inside its footprint, or an extra ray where the raster leaves the footprint uncovered.
 struct Probe {
     double x_rad, y_rad;  ///< offset from the beam axis, in footprint coordinates
+    double irradiance;    ///< the beam's relative irradiance there, exp(-2 r^2 / w^2)
     Eigen::Vector3d direction_world;
     const std::optional<raytrace::Hit>* hit;
 };
@@ -74,6 +75,8 @@ public:
     Eigen::Vector2d offset_of(const Eigen::Vector3d& in_beam) const;
     /// Beam coordinates of a footprint offset.
     Eigen::Vector3d in_beam(double x_rad, double y_rad) const;
+    /// The beam's irradiance at a footprint offset, relative to its axis.
+    double irradiance(double x_rad, double y_rad) const;
 
     /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
     void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
@@ -108,6 +111,7 @@ private:
     double floor_energy_j_;     ///< errors far below the detection threshold change nothing
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
+    double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;

@@ -40,12 +40,15 @@ public:
     const GalvoRaster& raster() const { return raster_; }
     /// Rays traced for the last frame rendered (probes and sub-rays): the cost of its accuracy.
     std::uint64_t rays_last_frame() const { return rays_last_frame_; }
+    /// The scene as traced (for benchmarks: record its rays, trace them again raw).
+    raytrace::TracedScene& traced() { return traced_; }
 
 private:
     /// A neighbouring beam whose axis falls inside a beam's footprint: raster steps and offset.
     struct Neighbour {
         int d_row, d_column;
         double x_rad, y_rad;
+        double irradiance;
     };
     BeamAim aim(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const;
     void find_neighbours();
@@ -66,6 +69,7 @@ private:
     std::vector<Neighbour> neighbours_;
     std::vector<std::uint8_t> extra_mask_;          ///< by raster cell (row, column): bit k = extra probe k
     std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
+    double extra_irradiance_ = 0.0;
     // Pass 1 results, by raster cell (row, column); extra probes at 4 * cell + k.
     std::vector<Eigen::Vector3d> axis_direction_, extra_direction_;
     std::vector<std::optional<raytrace::Hit>> axis_hit_, extra_hit_;

@@ -1,0 +1,26 @@
+#pragma once
+// `ladarsim bench`: what ladarsim's speed and accuracy are on this machine, measured as ratios
+// and errors within one run (machines are noisy; ratios and errors are not).
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace ladarsim::bench {
+
+struct BenchOptions {
+    std::filesystem::path scenario = "assets/scenarios/default.json";
+    bool quick = false;  ///< fewer frames and sizes: about a minute
+    std::function<void(const std::string&)> progress = [](const std::string&) {};
+};
+
+/// Runs every benchmark and returns their figures. Top-level keys: pipeline_vs_raw_embree,
+/// realtime_factor, count_error_pct, and the details under pipeline, realtime, accuracy, scaling.
+nlohmann::json run_benchmarks(const BenchOptions& options);
+
+/// The sensor's own beam rate the real-time factor is measured against: the paper's 150 x 20
+/// raster at 20 frames/s, 60,000 beams/s.
+double sensor_beams_per_second();
+
+}  // namespace ladarsim::bench
