@@ -16,7 +16,7 @@ namespace ladarsim::sensor_model {
 namespace {
 
 constexpr double kMradToRad = 1e-3;
-constexpr int kFirstLevel = 2;  // 4 x 4 cells: two interleaved halves of 8 to compare
+constexpr int kFirstLevel = 1;  // 2 x 2 cells, compared with the 4 x 4 of the next level
 constexpr int kLastLevel = 5;   // 32 x 32 cells
 constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays)
 /// Objects subtending less than this many footprint radii can hide between the probes or cover a
@@ -33,13 +33,15 @@ bool same_surface(const SurfaceEcho& a, const SurfaceEcho& b, double gap_m) {
     return std::abs(a.normal_world.cast<double>().dot(d)) <= gap_m && std::abs(b.normal_world.cast<double>().dot(d)) <= gap_m;
 }
 
-void add_to_tally(std::vector<FootprintIntegrator::Tally>& tally, std::uint32_t object_id, bool odd, double energy_j) {
+void add_to_tally(std::vector<FootprintIntegrator::Tally>& tally, std::uint32_t object_id, double energy_j) {
     auto it = std::find_if(tally.begin(), tally.end(), [&](const FootprintIntegrator::Tally& t) { return t.object_id == object_id; });
-    if (it == tally.end()) {
-        tally.push_back({object_id, 0.0, 0.0});
-        it = tally.end() - 1;
-    }
-    (odd ? it->odd : it->even) += energy_j;
+    if (it == tally.end()) tally.push_back({object_id, energy_j});
+    else it->energy_j += energy_j;
+}
+
+double tallied(const std::vector<FootprintIntegrator::Tally>& tally, std::uint32_t object_id) {
+    const auto it = std::find_if(tally.begin(), tally.end(), [&](const FootprintIntegrator::Tally& t) { return t.object_id == object_id; });
+    return it == tally.end() ? 0.0 : it->energy_j;
 }
 
 }  // namespace
@@ -140,7 +142,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         } else {
             footprint_.fixed(sub_rays);
         }
-        trace(aim, sub_rays, {}, traced_.has_volumes(), frame, 0, out, nullptr);
+        trace(aim, sub_rays, traced_.has_volumes(), frame, 0, out, nullptr);
         return;
     }
 
@@ -183,8 +185,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         if (!in_front) {
             outline = {-r_max, r_max, -r_max, r_max};  // straddles the sensor: anywhere
         } else {
-            // Padded for Embree's float placement of the mesh.
-            const double pad = 0.01 * std::max(outline.x_hi - outline.x_lo, outline.y_hi - outline.y_lo) + 1e-9;
+            // Padded for Embree's single-precision placement of the mesh, and no more: a cell
+            // straddling the outline counts whole when its sub-ray hits, so padding is bias.
+            const double pad = 1e-5 * std::max(outline.x_hi - outline.x_lo, outline.y_hi - outline.y_lo) + 1e-9;
             outline = {outline.x_lo - pad, outline.x_hi + pad, outline.y_lo - pad, outline.y_hi + pad};
         }
         const std::optional<FootprintRect> seen = footprint_.clip(outline);
@@ -212,12 +215,12 @@ template <class Region>
 double FootprintIntegrator::sample(const BeamAim& aim, const Region& region, const std::optional<FootprintRect>& excluded,
                                    double share, bool media, std::uint64_t frame, BeamEchoes& out) const {
     thread_local std::vector<SubRay> grid, kept;
-    thread_local std::vector<std::uint8_t> parity;
     thread_local std::vector<double> uniforms;
-    thread_local std::vector<Tally> tally;
+    thread_local std::vector<Tally> tally, previous;
     const std::size_t surface_before = out.surface.size();
     const std::size_t volume_before = out.volume.size();
     std::uint32_t first_sample = excluded ? kComplementSamples : 0;
+    previous.clear();
     for (int level = kFirstLevel;; ++level) {
         const int n = 1 << level;
         const std::size_t cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
@@ -234,36 +237,39 @@ double FootprintIntegrator::sample(const BeamAim& aim, const Region& region, con
         } else {
             footprint_.grid(region, n, grid);
         }
-        // Cells are (i, j) at i * n + j; the two halves of a checkerboard interleave evenly.
         kept.clear();
-        parity.clear();
         double kept_weight = 0.0;
-        for (std::size_t k = 0; k < cells; ++k) {
-            if (grid[k].weight <= 0.0) continue;
-            if (excluded && footprint_.contains(*excluded, grid[k].offset_x_rad, grid[k].offset_y_rad)) continue;
-            kept.push_back(grid[k]);
-            parity.push_back(static_cast<std::uint8_t>((k / n + k % n) % 2));
-            kept_weight += grid[k].weight;
+        for (const SubRay& sub : grid) {
+            if (sub.weight <= 0.0) continue;
+            if (excluded && footprint_.contains(*excluded, sub.offset_x_rad, sub.offset_y_rad)) continue;
+            kept.push_back(sub);
+            kept_weight += sub.weight;
         }
         // With a share given, the kept cells carry it (the excluded part is accounted elsewhere).
         if (share > 0.0 && kept_weight > 0.0) {
-            for (SubRay& s : kept) s.weight *= share / kept_weight;
+            for (SubRay& sub : kept) sub.weight *= share / kept_weight;
             kept_weight = share;
         }
         out.surface.resize(surface_before);
         out.volume.resize(volume_before);
         tally.clear();
-        trace(aim, kept, parity, media, frame, first_sample, out, &tally);
-        const bool converged = std::all_of(tally.begin(), tally.end(), [&](const Tally& t) {
-            return std::abs(t.even - t.odd) <= tolerance_ * std::max(t.even + t.odd, floor_energy_j_);
-        });
-        if ((converged && !kept.empty()) || level == kLastLevel) return kept_weight;
+        trace(aim, kept, media, frame, first_sample, out, &tally);
+        // Converged when this level agrees with the previous one (4 x fewer cells) on every
+        // object's energy: their difference bounds the coarser estimate's error, so this finer
+        // one is within the tolerance (errors well below the detection threshold do not count).
+        auto agrees = [&](const Tally& t) {
+            return std::abs(tallied(tally, t.object_id) - tallied(previous, t.object_id)) <=
+                   tolerance_ * std::max(tallied(tally, t.object_id), floor_energy_j_);
+        };
+        const bool converged = level > kFirstLevel && !kept.empty() && std::all_of(tally.begin(), tally.end(), agrees) &&
+                               std::all_of(previous.begin(), previous.end(), agrees);
+        if (converged || level == kLastLevel) return kept_weight;
+        std::swap(tally, previous);
         first_sample += static_cast<std::uint32_t>(cells);
     }
 }
 
-void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_rays, std::span<const std::uint8_t> parity,
-                                bool media, std::uint64_t frame, std::uint32_t first_sample, BeamEchoes& out,
+void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, std::uint32_t first_sample, BeamEchoes& out,
                                 std::vector<Tally>* tally) const {
     const auto& sensor = scenario_.sensor;
     thread_local std::vector<raytrace::Ray> rays;
@@ -296,7 +302,7 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
         const double energy = echo_energy_j(weight, h.reflectance, h.cos_incidence, h.range_m, fog);
         out.surface.push_back({h.range_m, weight, energy, 0.0, h.object_id,
                                rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
-        if (tally) add_to_tally(*tally, h.object_id, parity[i] != 0, energy);
+        if (tally) add_to_tally(*tally, h.object_id, energy);
     }
 }
 

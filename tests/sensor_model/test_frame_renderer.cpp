@@ -10,43 +10,16 @@
 
 #include "ladarsim/sensor_model/beam_geometry.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
+#include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
 using namespace ladarsim::sensor_model;
 using namespace ladarsim::test;
 
-namespace {
-
-/// The paper's sensor with the parts that would blur a closed-form check switched off: no noise
-/// (expectations only), no extinction, no range folding, no saturation.
-Scenario base_scenario() {
-    Scenario s;
-    s.mount.position_world = {0, 0, 0};
-    s.mount.gimbal_az_deg = 0.0;
-    s.mount.gimbal_el_deg = 0.0;
-    s.render.frames = 1;
-    s.render.noise = false;
-    s.atmosphere.visibility_m = std::numeric_limits<double>::infinity();
-    s.sensor.range_folding = false;
-    s.sensor.saturation_current_a = 1e6;
-    return s;
-}
-
-/// Primary photo-electrons from a Lambertian surface filling the footprint (extended target):
-/// E_pulse eta (rho / pi) cos(theta) A_r / R^2, with E_pulse = P_peak FWHM sqrt(pi / (4 ln 2)) for
-/// the Gaussian pulse, times responsivity / q.
-double extended_target_photoelectrons(const SensorConfig& c, double reflectance, double cos_incidence, double range_m) {
-    const double pulse_energy = c.peak_power_w * c.pulse_width_ns * 1e-9 * std::sqrt(M_PI / (4.0 * std::log(2.0)));
-    const double area = M_PI * c.aperture_diameter_m * c.aperture_diameter_m / 4.0;
-    const double energy = pulse_energy * c.optics_efficiency * reflectance / M_PI * cos_incidence * area / (range_m * range_m);
-    return energy * c.responsivity_a_per_w / 1.602176634e-19;
-}
-
-}  // namespace
 
 TEST_CASE("a wall filling every footprint: one return per beam at the closed-form range", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     const double distance_m = 100.0, reflectance = 0.5;
     s.scene.objects.push_back(object_at(1, plate(50.0, reflectance), fixed_at(distance_m, 0, 0)));
     FrameRenderer renderer(s);
@@ -73,7 +46,7 @@ TEST_CASE("a wall filling every footprint: one return per beam at the closed-for
 }
 
 TEST_CASE("a plate in front of a wall splits each footprint's energy between two returns", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     s.render.jitter = false;
     // The plate's edge at y = 0 runs through the field centre: beams near the centre see both.
     s.scene.objects.push_back(object_at(1, plate(50.0, 0.4), fixed_at(200.0, 0, 0)));
@@ -101,7 +74,7 @@ TEST_CASE("a plate in front of a wall splits each footprint's energy between two
 }
 
 TEST_CASE("ground at grazing incidence is one return per beam, however far its footprint stretches", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     const double height_m = 3.0, look_down_deg = 0.5;
     s.mount.position_world = {0.0, 0.0, height_m};
     s.mount.gimbal_el_deg = -look_down_deg;
@@ -126,7 +99,7 @@ TEST_CASE("ground at grazing incidence is one return per beam, however far its f
 }
 
 TEST_CASE("a moving target is hit where its trajectory is at each beam's emission time", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     s.render.jitter = false;
     // A 0.5 m plate crossing the field from right to left at 200 m/s, 100 m away: during the
     // 20 ms frame it moves 4 m, so early and late lines see it in different columns.
@@ -156,7 +129,7 @@ TEST_CASE("a moving target is hit where its trajectory is at each beam's emissio
 }
 
 TEST_CASE("ground-truth boxes enclose the object's vertices at the frame's mid time", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     auto model = plate(0.3, 0.1);
     s.scene.objects.push_back(object_at(
         2, model, scene::Trajectory::keyframes({{0.0, {{80, 0, 0}, scene::orientation_from_ypr_deg(30, 10, 5)}},
@@ -179,7 +152,7 @@ TEST_CASE("ground-truth boxes enclose the object's vertices at the frame's mid t
 }
 
 TEST_CASE("frames are identical with one, two and eight threads", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     // Every random process on: speckle, noise, jitter, false alarms, waveforms at the plate's edges.
     s.render.noise = true;
     s.sensor.range_folding = true;
@@ -216,7 +189,7 @@ TEST_CASE("frames are identical with one, two and eight threads", "[frame_render
 }
 
 TEST_CASE("a cued gimbal slews towards the target at its rate limit", "[frame_renderer]") {
-    Scenario s = base_scenario();
+    Scenario s = closed_form_scenario();
     s.mount.gimbal_az_deg = 0.0;
     s.mount.gimbal_el_deg = 0.0;
     s.mount.cue_object_id = 2;

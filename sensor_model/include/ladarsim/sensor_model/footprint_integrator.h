@@ -62,9 +62,9 @@ struct BeamEchoes {
 ///    whether the footprint lies on one plane, then integrated without rays; objects small enough
 ///    to hide between probes, or moving, are found by testing the beam's cone against their
 ///    bounding spheres and sampled only inside the part of the footprint they can occupy; media are
-///    sampled only where the cone meets them. Where sampling is needed, a grid of 4 x 4 cells is
-///    refined (x 4) until two interleaved half-grids agree on each object's energy within
-///    `footprint_tolerance`.
+///    sampled only where the cone meets them. Where sampling is needed, a grid of 2 x 2 cells is
+///    refined (x 4 cells per level, up to 32 x 32) until two successive levels agree on each
+///    object's energy within `footprint_tolerance`.
 class FootprintIntegrator {
 public:
     FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced, const BeamReceiver& receiver);
@@ -81,10 +81,10 @@ public:
     /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
     void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
 
-    /// Energy a sampled region sent back from one object, in two interleaved halves of its cells.
+    /// Energy a sampled region sent back from one object.
     struct Tally {
         std::uint32_t object_id;
-        double even, odd;
+        double energy_j;
     };
 
 private:
@@ -93,10 +93,9 @@ private:
     template <class Region>
     double sample(const BeamAim& aim, const Region& region, const std::optional<FootprintRect>& excluded, double share,
                   bool media, std::uint64_t frame, BeamEchoes& out) const;
-    /// Traces sub-rays, appending their echoes, and tallies each object's energy by the cell
-    /// `parity` of the sub-rays that met it.
-    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, std::span<const std::uint8_t> parity, bool media,
-               std::uint64_t frame, std::uint32_t first_sample, BeamEchoes& out, std::vector<Tally>* tally) const;
+    /// Traces sub-rays, appending their echoes, and tallies each object's energy.
+    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame,
+               std::uint32_t first_sample, BeamEchoes& out, std::vector<Tally>* tally) const;
     enum class Patch { empty, plane, mixed };
     /// The footprint outside `excluded` (share `weight`) as one plane, from the probes outside it.
     Patch plane_patch(const BeamAim& aim, std::span<const Probe> probes, const std::optional<FootprintRect>& excluded,

@@ -1,0 +1,167 @@
+// Adaptive footprints against closed forms and against brute force: each shortcut gives the answer
+// of the full path within its tolerance, small targets are found, and the error falls as the
+// tolerance tightens.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/physical_constants.h"
+#include "../support/closed_form_scenario.h"
+#include "../support/scene_builders.h"
+
+using namespace ladarsim;
+using namespace ladarsim::sensor_model;
+using namespace ladarsim::test;
+
+namespace {
+
+double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+
+/// Share of a beam's energy on a square of half-side `half_m` facing it at `distance_m` on the
+/// sensor's x axis, turned by `roll` about that axis, for a beam pointing (az, el): the Gaussian
+/// (sigma = divergence / 4 per axis) is round and separable, so in axes turned with the square the
+/// share is a product of two normal-CDF differences, over F = 1 - exp(-4.5) for the truncated
+/// footprint's renormalisation. Valid while the square lies well inside the truncation radius.
+double plate_share(const SensorConfig& c, double half_m, double distance_m, double roll, double az, double el) {
+    const double sigma = 0.25 * c.divergence_mrad * 1e-3;
+    const double half = std::atan(half_m / distance_m);
+    auto axis = [&](double centre) { return normal_cdf((centre + half) / sigma) - normal_cdf((centre - half) / sigma); };
+    const double captured = -std::expm1(-2.0 * c.footprint_truncation * c.footprint_truncation);
+    const double u = -az * std::cos(roll) - el * std::sin(roll), v = az * std::sin(roll) - el * std::cos(roll);
+    return axis(u) * axis(v) / captured;
+}
+
+struct PlateRun {
+    int returns = 0;
+    int expected_detectable = 0;  ///< beams whose closed-form energy is twice the threshold's
+    int found_detectable = 0;
+    double abs_error = 0.0, expected = 0.0;  ///< summed |intensity - closed form|, closed form
+    double rays_per_beam = 0.0;
+};
+
+/// A 0.1 m plate (reflectance 1) at `distance_m` on the axis, nothing behind it; turned 45 deg
+/// about the axis, a diamond filling half its outline, whose edges cut the sampled cells.
+PlateRun plate_run(int samples, double tolerance, double distance_m, double roll_deg = 45.0) {
+    Scenario s = closed_form_scenario();
+    s.sensor.footprint_samples = samples;
+    s.sensor.footprint_tolerance = tolerance;
+    const double half = 0.05;
+    s.scene.objects.push_back(object_at(1, plate(2 * half, 1.0),
+                                        scene::Trajectory::fixed(scene::Pose{{distance_m, 0.0, 0.0},
+                                                                             scene::orientation_from_ypr_deg(0, 0, roll_deg)})));
+    FrameRenderer renderer(s);
+    const Frame f = renderer.render(0);
+    const BeamReceiver receiver(s.sensor, s.atmosphere, false);
+    const auto& apd = receiver.apd();
+    const double threshold_pe = apd.threshold_a() / (apd.amps_per_watt() * receiver.waveform().pulse().peak_per_joule()) *
+                                s.sensor.responsivity_a_per_w / kElementaryCharge_c;
+    const double full = extended_target_photoelectrons(s.sensor, 1.0, 1.0, distance_m);
+    const double r_max = s.sensor.footprint_truncation * 0.5 * s.sensor.divergence_mrad * 1e-3;
+
+    std::map<int, const Return*> seen;
+    for (const Return& r : f.returns) seen[r.row * 1000 + r.column] = &r;
+    PlateRun run;
+    run.rays_per_beam = double(renderer.rays_last_frame()) / renderer.raster().beam_count();
+    const GalvoRaster& raster = renderer.raster();
+    for (int row = 0; row < raster.rows(); ++row) {
+        for (int step = 0; step < raster.columns(); ++step) {
+            const RasterBeam b = raster.beam(row, step);
+            // Only where the plate is well inside the truncated footprint (the closed form ignores truncation).
+            if (std::hypot(b.az_offset_rad, b.el_offset_rad) + 1.5 * half / distance_m > r_max) continue;
+            const double expected =
+                full * plate_share(s.sensor, half, distance_m, roll_deg * M_PI / 180.0, b.az_offset_rad, b.el_offset_rad);
+            const auto it = seen.find(b.row * 1000 + b.column);
+            const double got = it == seen.end() ? 0.0 : it->second->intensity;
+            if (expected > 2.0 * threshold_pe) {
+                ++run.expected_detectable;
+                run.found_detectable += it != seen.end();
+                run.abs_error += std::abs(got - expected);
+                run.expected += expected;
+            }
+        }
+    }
+    return run;
+}
+
+}  // namespace
+
+TEST_CASE("a plane patch integrated without rays equals brute force on a tilted wall", "[footprint]") {
+    // A wall at 100 m turned 60 deg: every footprint lies on one plane, across which the range
+    // changes by centimetres and cos(theta) by percent.
+    auto render = [](int samples) {
+        Scenario s = closed_form_scenario();
+        s.render.jitter = false;
+        s.sensor.footprint_samples = samples;
+        s.scene.objects.push_back(object_at(
+            1, plate(200.0, 0.4), scene::Trajectory::fixed(scene::Pose{{100.0, 0.0, 0.0}, scene::orientation_from_ypr_deg(60, 0, 0)})));
+        FrameRenderer renderer(s);
+        Frame f = renderer.render(0);
+        return std::make_pair(std::move(f), renderer.rays_last_frame());
+    };
+    const auto [adaptive, adaptive_rays] = render(0);
+    const auto [brute, brute_rays] = render(4096);
+    REQUIRE(adaptive.returns.size() == brute.returns.size());
+    for (std::size_t i = 0; i < adaptive.returns.size(); ++i) {
+        const Return& a = adaptive.returns[i];
+        const Return& b = brute.returns[i];
+        REQUIRE(a.column == b.column);
+        REQUIRE(a.row == b.row);
+        // 16 quadrature nodes against 4096 sub-rays: the mean range to a millimetre, the energy
+        // (which also depends on the spread, through the stretched pulse's peak) to 0.5 %.
+        CHECK(a.range_m == Approx(b.range_m).margin(1e-3));
+        CHECK(a.intensity == Approx(b.intensity).epsilon(5e-3));
+    }
+    // One probe ray per beam (plus a few at the raster's border) against 4096.
+    CHECK(adaptive_rays < 1.2 * 3000);
+}
+
+TEST_CASE("a target smaller than the sub-ray spacing is found and weighed by its footprint share", "[footprint]") {
+    // At 1 km the 0.1 m plate subtends 0.1 mrad: less than the 0.2 mrad between 16 fixed sub-rays.
+    const PlateRun adaptive = plate_run(0, 0.02, 1000.0);
+    REQUIRE(adaptive.expected_detectable > 3);
+    CHECK(adaptive.found_detectable == adaptive.expected_detectable);
+    CHECK(adaptive.abs_error / adaptive.expected < 0.03);
+    const PlateRun fixed = plate_run(16, 0.0, 1000.0);
+    INFO("16 fixed sub-rays find " << fixed.found_detectable << " of " << fixed.expected_detectable);
+    CHECK(fixed.abs_error / fixed.expected > 3.0 * adaptive.abs_error / adaptive.expected);
+}
+
+TEST_CASE("the error on a small target falls as the tolerance tightens, and costs rays", "[footprint]") {
+    // A 0.1 m plate at 2 km: 0.05 mrad across, 2.5 % of the footprint's area.
+    double last_error = 1e9, last_rays = 0.0;
+    for (const double tolerance : {0.3, 0.1, 0.03, 0.01}) {
+        const PlateRun run = plate_run(0, tolerance, 2000.0);
+        REQUIRE(run.expected_detectable > 0);
+        const double error = run.abs_error / run.expected;
+        INFO("tolerance " << tolerance << ": error " << error << ", " << run.rays_per_beam << " rays per beam");
+        CHECK(error <= last_error * 1.05);
+        CHECK(error < tolerance);
+        CHECK(run.rays_per_beam >= last_rays);
+        last_error = error;
+        last_rays = run.rays_per_beam;
+    }
+}
+
+TEST_CASE("from a 10 m wall to a small plate at 2 km, each energy matches its closed form", "[footprint]") {
+    // Extended targets (R^-2) from 10 m to 2 km, and a small plate at 2 km (R^-4): more than six
+    // decades of received energy, each against its closed form.
+    for (const double distance : {10.0, 2000.0}) {
+        Scenario s = closed_form_scenario();
+        s.scene.objects.push_back(object_at(1, plate(100.0, 0.5), fixed_at(distance, 0, 0)));
+        FrameRenderer renderer(s);
+        const Frame f = renderer.render(0);
+        REQUIRE(f.returns.size() == 3000u);
+        for (const Return& r : f.returns) {
+            const double cos_axis = std::cos(r.beam_el_rad) * std::cos(r.beam_az_rad);
+            const double range = distance / cos_axis;
+            CHECK(r.range_m == Approx(range).margin(1e-4));
+            CHECK(r.intensity == Approx(extended_target_photoelectrons(s.sensor, 0.5, cos_axis, range)).epsilon(1e-4));
+        }
+    }
+    const PlateRun far = plate_run(0, 0.01, 2000.0);
+    CHECK(far.abs_error / far.expected < 0.01);
+    const double near = extended_target_photoelectrons(closed_form_scenario().sensor, 0.5, 1.0, 10.0);
+    CHECK(near / (far.expected / far.expected_detectable) > 1e6);
+}

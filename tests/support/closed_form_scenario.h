@@ -1,0 +1,36 @@
+#pragma once
+// A scenario for checks against closed forms, and the closed form most of them use.
+#include <cmath>
+#include <limits>
+
+#include "ladarsim/sensor_model/scenario.h"
+
+namespace ladarsim::test {
+
+/// The paper's sensor with the parts that would blur a closed-form check switched off: no noise
+/// (expectations only), no extinction, no range folding, no saturation.
+inline sensor_model::Scenario closed_form_scenario() {
+    sensor_model::Scenario s;
+    s.mount.position_world = {0, 0, 0};
+    s.mount.gimbal_az_deg = 0.0;
+    s.mount.gimbal_el_deg = 0.0;
+    s.render.frames = 1;
+    s.render.noise = false;
+    s.atmosphere.visibility_m = std::numeric_limits<double>::infinity();
+    s.sensor.range_folding = false;
+    s.sensor.saturation_current_a = 1e6;
+    return s;
+}
+
+/// Primary photo-electrons from a Lambertian surface filling the footprint (extended target):
+/// E_pulse eta (rho / pi) cos(theta) A_r / R^2, with E_pulse = P_peak FWHM sqrt(pi / (4 ln 2)) for
+/// the Gaussian pulse, times responsivity / q.
+inline double extended_target_photoelectrons(const sensor_model::SensorConfig& c, double reflectance, double cos_incidence, double range_m) {
+    const double pulse_energy = c.peak_power_w * c.pulse_width_ns * 1e-9 * std::sqrt(M_PI / (4.0 * std::log(2.0)));
+    const double area = M_PI * c.aperture_diameter_m * c.aperture_diameter_m / 4.0;
+    const double energy = pulse_energy * c.optics_efficiency * reflectance / M_PI * cos_incidence * area / (range_m * range_m);
+    return energy * c.responsivity_a_per_w / 1.602176634e-19;
+}
+
+
+}  // namespace ladarsim::test
