@@ -1,6 +1,7 @@
 #include "ladarsim/raytrace/traced_scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -81,6 +82,9 @@ struct TracedScene::Impl {
     std::vector<BoundsTrack> bounds;
     double window_begin_s = 0.0;
     double window_length_s = 0.0;
+    // Which time window this is, unique across scenes: a transform cached under another is stale.
+    std::uint64_t window_id = 0;
+    static inline std::atomic<std::uint64_t> windows_set{0};
 
     std::mutex error_mutex;
     std::string last_error;
@@ -254,6 +258,7 @@ struct TracedScene::Impl {
         if (motion_steps < 2) throw std::invalid_argument("TracedScene: motion_steps must be at least 2");
         window_begin_s = begin_s;
         window_length_s = end_s - begin_s;
+        window_id = ++windows_set;
         for (BoundsTrack& track : bounds) {
             if (!track.bounds.moving) continue;
             track.step_world_from_model.resize(static_cast<std::size_t>(motion_steps));
@@ -335,10 +340,20 @@ struct TracedScene::Impl {
                 for (int k = 0; k < 3; ++k)
                     v[k] = Eigen::Vector3d(entry.vertices[3 * tri[k]], entry.vertices[3 * tri[k] + 1], entry.vertices[3 * tri[k] + 2]);
             } else {
-                // The instance's transform at this ray's time, as Embree interpolated it.
-                float xfm[12];
-                rtcGetGeometryTransform(entry.geometry.get(), rh.ray.time, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-                const Matrix34 m = to_matrix(xfm);
+                // The instance's transform at this ray's time, as Embree interpolated it; a beam's
+                // sub-rays share one time, so the last one is kept.
+                thread_local struct {
+                    RTCGeometry geometry = nullptr;
+                    float time = 0.0f;
+                    std::uint64_t window = 0;
+                    Matrix34 m;
+                } last;
+                if (last.geometry != entry.geometry.get() || last.time != rh.ray.time || last.window != window_id) {
+                    float xfm[12];
+                    rtcGetGeometryTransform(entry.geometry.get(), rh.ray.time, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+                    last = {entry.geometry.get(), rh.ray.time, window_id, to_matrix(xfm)};
+                }
+                const Matrix34& m = last.m;
                 for (int k = 0; k < 3; ++k) v[k] = m * model.mesh.positions[tri[k]].cast<double>().homogeneous();
             }
             if (const auto t = triangle_distance(o, d, v[0], v[1], v[2])) hit.range_m = *t;

@@ -107,7 +107,8 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
     std::erase_if(surfaces, [](const BeamSurface& s) { return s.echoes.empty(); });
     // A volume backscatters continuously along its depth; its free-path samples stand for that
     // distribution, so they enter the waveform as one echo of their total energy, stretched by
-    // their spread, rather than as a comb of separate pulses.
+    // their spread, rather than as a comb of separate pulses. (A surface's sub-ray echoes stay
+    // separate: summed, their pulses draw its waveform whatever the sampling density.)
     for (BeamSurface& s : surfaces) {
         if (s.source != ReturnSource::volume || s.echoes.size() < 2) continue;
         const auto [range, spread] = range_moments(s.echoes);
