@@ -18,6 +18,7 @@ namespace {
 constexpr double kMradToRad = 1e-3;
 constexpr int kFirstLevel = 1;  // 2 x 2 cells, compared with the 4 x 4 of the next level
 constexpr int kLastLevel = 5;   // 32 x 32 cells
+const double kLevelErrorRatio = std::pow(2.0, 1.5);  // error of a level over that of the next
 constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays)
 /// Objects subtending less than this many footprint radii can hide between the probes or cover a
 /// part of a footprint no probe sees: they are tested against each beam's cone and sampled.
@@ -26,11 +27,17 @@ constexpr double kSmallObjectFootprints = 8.0;
 /// that they never repeat those of a target's region in the same beam.
 constexpr std::uint32_t kComplementSamples = 1u << 20;
 
+/// How far a continuous surface may bend away from a tangent plane, per metre along it: 5 deg
+/// between the facets of a terrain or a hull still make one surface, however far apart the
+/// sub-rays that sampled them.
+const double kSurfaceBend = std::sin(5.0 * std::numbers::pi / 180.0);
+
 bool same_surface(const SurfaceEcho& a, const SurfaceEcho& b, double gap_m) {
     if (b.range_m - a.range_m <= gap_m) return true;
     if (a.object_id != b.object_id) return false;
     const Eigen::Vector3d d = b.point_world - a.point_world;
-    return std::abs(a.normal_world.cast<double>().dot(d)) <= gap_m && std::abs(b.normal_world.cast<double>().dot(d)) <= gap_m;
+    const double allowed = gap_m + kSurfaceBend * d.norm();
+    return std::abs(a.normal_world.cast<double>().dot(d)) <= allowed && std::abs(b.normal_world.cast<double>().dot(d)) <= allowed;
 }
 
 void add_to_tally(std::vector<FootprintIntegrator::Tally>& tally, std::uint32_t object_id, double energy_j) {
@@ -56,7 +63,13 @@ std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, doubl
         bool one_object = true;
         for (std::size_t k = first; k < last; ++k) {
             surface.weight += echoes[k].weight;
-            surface.echoes.push_back({echoes[k].range_m, echoes[k].energy_j, 0, echoes[k].spread_m});
+            // A sub-ray stands for its cell of the surface, which reaches about half-way to the
+            // ranges of its neighbours: its pulse is stretched by that much, so that a sparsely
+            // sampled surface draws one continuous echo, not a comb of spurious peaks.
+            const double before = k > first ? echoes[k].range_m - echoes[k - 1].range_m : 0.0;
+            const double after = k + 1 < last ? echoes[k + 1].range_m - echoes[k].range_m : 0.0;
+            const double spread = std::max(echoes[k].spread_m, 0.5 * std::max(before, after));
+            surface.echoes.push_back({echoes[k].range_m, echoes[k].energy_j, 0, spread});
             one_object = one_object && echoes[k].object_id == echoes[first].object_id;
         }
         surface.object_id = echoes[first].object_id;
@@ -255,11 +268,12 @@ double FootprintIntegrator::sample(const BeamAim& aim, const Region& region, con
         tally.clear();
         trace(aim, kept, media, frame, first_sample, out, &tally);
         // Converged when this level agrees with the previous one (4 x fewer cells) on every
-        // object's energy: their difference bounds the coarser estimate's error, so this finer
-        // one is within the tolerance (errors well below the detection threshold do not count).
+        // object's energy. Their difference is mostly the coarser level's error; jittered
+        // stratification of an edge errs as cells^(-3/4), so this level's error is the difference
+        // over 2^(3/2) (errors well below the detection threshold do not count).
         auto agrees = [&](const Tally& t) {
             return std::abs(tallied(tally, t.object_id) - tallied(previous, t.object_id)) <=
-                   tolerance_ * std::max(tallied(tally, t.object_id), floor_energy_j_);
+                   kLevelErrorRatio * tolerance_ * std::max(tallied(tally, t.object_id), floor_energy_j_);
         };
         const bool converged = level > kFirstLevel && !kept.empty() && std::all_of(tally.begin(), tally.end(), agrees) &&
                                std::all_of(previous.begin(), previous.end(), agrees);

@@ -27,9 +27,11 @@ struct SurfaceEcho {
 };
 
 /// Groups echoes (sorted here by range) into the distinct surfaces along a beam. Two neighbours in
-/// range are one surface when within `gap_m`, or when they lie on one object's locally continuous
-/// surface: each within the gap of the other's tangent plane (a surface seen at grazing incidence
-/// spans metres in range and would otherwise break into one return per sub-ray). A surface is
+/// range are one surface when within `gap_m`, or when they lie on one object's continuous surface:
+/// each within the gap (plus a bend of 5 deg over their separation) of the other's tangent plane
+/// (a surface seen at grazing incidence spans metres in range and would otherwise break into one
+/// return per sub-ray). Each echo's pulse is stretched to reach half-way to its neighbours in
+/// range, so that the result does not depend on how densely the surface was sampled. A surface is
 /// named after the object carrying most of its energy.
 std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m);
 
