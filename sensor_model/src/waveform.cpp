@@ -13,11 +13,15 @@ namespace ladarsim::sensor_model {
 namespace {
 
 constexpr double kWindowSigmas = 6.0;  // pulse tails kept on each side of a cluster of echoes
+constexpr std::size_t kNoiseBank = std::size_t{1} << 18;  // samples: 33 us of receiver noise
 
 }  // namespace
 
 WaveformReceiver::WaveformReceiver(const ApdReceiver& apd, double pulse_fwhm_s, double bin_s)
-    : apd_(apd), pulse_(PulseShape::of(pulse_fwhm_s)), fwhm_s_(pulse_fwhm_s), bin_s_(bin_s) {}
+    : apd_(apd), pulse_(PulseShape::of(pulse_fwhm_s)), fwhm_s_(pulse_fwhm_s), bin_s_(bin_s) {
+    RandomSequence bank_draws(0, RandomStream::waveform_noise, 0, 0xFFFFFFFFu);
+    noise_bank_ = band_limited_noise(kNoiseBank, bank_draws);
+}
 
 PulseShape WaveformReceiver::shape_of(const Echo& e) const {
     return e.spread_m > 0.0 ? PulseShape::of(fwhm_s_, 2.0 * e.spread_m / kSpeedOfLight_mps) : pulse_;
@@ -94,7 +98,13 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
             r *= q;
         }
     }
-    const std::vector<double> n = noise ? band_limited_noise(bins, *noise) : std::vector<double>(bins, 0.0);
+    std::vector<double> n(bins, 0.0);
+    if (noise && bins <= kNoiseBank / 8) {
+        const auto start = static_cast<std::size_t>(noise->uniform() * static_cast<double>(kNoiseBank - bins));
+        std::copy_n(noise_bank_.begin() + static_cast<std::ptrdiff_t>(start), bins, n.begin());
+    } else if (noise) {
+        n = band_limited_noise(bins, *noise);  // a window longer than the bank can spare
+    }
     std::vector<double> y(bins);
     const double saturation = apd_.saturation_a();
     for (std::size_t k = 0; k < bins; ++k)

@@ -39,7 +39,10 @@ public:
 
     /// Detects the pulses in the waveform the echoes make. Echoes more than a few pulse widths
     /// apart get separate windows (the receiver's noise elsewhere is the false-alarm process).
-    /// `noise` null: the noise-free waveform.
+    /// `noise` null: the noise-free waveform; else a window's noise is a stretch of a long
+    /// realisation synthesised once, starting where `noise` says (an FFT per window cost more than
+    /// everything else a beam does; two windows of a few hundred samples overlap with probability
+    /// below 1 %).
     std::vector<DetectedPulse> detect(std::span<const Echo> echoes, RandomSequence* noise) const;
 
     /// `n` samples of zero-mean, unit-variance Gaussian noise whose spectrum is flat up to the
@@ -58,6 +61,7 @@ private:
     PulseShape pulse_;
     double fwhm_s_;
     double bin_s_;
+    std::vector<double> noise_bank_;
 };
 
 }  // namespace ladarsim::sensor_model
