@@ -15,6 +15,7 @@
 #include <pcl/common/centroid.h>
 #include <pcl/common/eigen.h>
 #include <pcl/exceptions.h>
+#include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
@@ -117,6 +118,13 @@ pcl::PCLPointCloud2 read_pcd(const std::filesystem::path& file) {
     check_pcd_header(file);
     pcl::PCLPointCloud2 cloud;
     int status = -1;
+    // PCL reports its own failures on stderr; ours is the one clear line.
+    const pcl::console::VERBOSITY_LEVEL verbosity = pcl::console::getVerbosityLevel();
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+    struct Restore {
+        pcl::console::VERBOSITY_LEVEL level;
+        ~Restore() { pcl::console::setVerbosityLevel(level); }
+    } restore{verbosity};
     try {
         status = pcl::io::loadPCDFile(name, cloud);
     } catch (const pcl::PCLException& e) {

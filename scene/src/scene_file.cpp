@@ -189,7 +189,14 @@ SceneObject read_object(JsonFields& o, std::uint32_t id, const fs::path& scenari
 
     const fs::path model_file = scenario_dir / o.string("model");
     if (!fs::is_regular_file(model_file)) o.fail("model", "no such file: " + model_file.string());
-    object.model = apply_material_overrides(o, models.get(model_file));
+    std::shared_ptr<const Model> model;
+    // A broken model file is named with the field that led to it.
+    try {
+        model = models.get(model_file);
+    } catch (const InputError& e) {
+        o.fail("model", e.what());
+    }
+    object.model = apply_material_overrides(o, model);
 
     if (o.has("size_m") && o.has("scale")) o.fail("scale", "give size_m or scale, not both");
     if (o.has("size_m")) {
@@ -222,7 +229,11 @@ BackgroundMap read_background(JsonFields& b, const fs::path& scenario_dir) {
     options.reflectance_at_max_intensity =
         b.number("reflectance_at_max_intensity", 0.0, 1.0, options.reflectance_at_max_intensity);
     b.reject_unknown_keys();
-    return load_background_map(file, options);
+    try {
+        return load_background_map(file, options);
+    } catch (const InputError& e) {
+        b.fail("file", e.what());  // a broken map is named with the field that led to it
+    }
 }
 
 }  // namespace

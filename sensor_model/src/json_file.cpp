@@ -21,7 +21,8 @@ nlohmann::json read_json(const std::filesystem::path& path) {
     if (!in) throw InputError(path.string(), "(file)", "cannot open");
     try {
         return nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {
+        // parse_error, and out_of_range for numbers beyond double (1e999): both unreadable text.
         throw InputError(path.string(), "(file)", std::string("not valid JSON: ") + e.what());
     }
 }

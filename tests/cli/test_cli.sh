@@ -30,6 +30,13 @@ expect_error "$src/tests/cli/bad/wide_field.json" "sensor.field_az_deg"
 expect_error "$src/tests/cli/bad/missing_model.json" "objects[0].model"
 expect_error "$src/tests/cli/bad/not_json.json" "not valid JSON"
 expect_error "$work/does_not_exist.json" "cannot open"
+expect_error "$src/tests/cli/bad/wrong_type.json" "render.frames"
+expect_error "$src/tests/cli/bad/negative_range.json" "sensor.max_range_m"
+expect_error "$src/tests/cli/bad/nan_position.json" "not valid JSON"
+expect_error "$src/tests/cli/bad/duplicate_id.json" "objects[1].id"
+expect_error "$src/tests/cli/bad/missing_background.json" "background.file"
+expect_error "$src/tests/cli/bad/corrupt_map.json" "background.file: $src/tests/cli/bad/corrupt_map.pcd"
+expect_error "$src/tests/cli/bad/truncated_model.json" "objects[0].model: $src/tests/cli/bad/truncated.glb"
 
 # A good run: every file present, no temporaries left, frames identical with 1 and 2 threads.
 good="$src/tests/cli/small.json"

@@ -88,14 +88,18 @@ PlateRun plate_run(int samples, double tolerance, double distance_m, double roll
 }  // namespace
 
 TEST_CASE("a plane patch integrated without rays equals brute force on a tilted wall", "[footprint]") {
-    // A wall at 100 m turned 60 deg: every footprint lies on one plane, across which the range
-    // changes by centimetres and cos(theta) by percent.
-    auto render = [](int samples) {
+    // A wall at 100 m turned 60 or 85 deg (grazing), or turned its back to the sensor: every
+    // footprint lies on one plane, across which the range changes by up to 20 cm and cos(theta)
+    // by up to 15 %.
+    const double yaw_deg = GENERATE(60.0, 85.0, 180.0);
+    INFO("wall turned " << yaw_deg << " deg");
+    auto render = [yaw_deg](int samples) {
         Scenario s = closed_form_scenario();
         s.render.jitter = false;
         s.sensor.footprint_samples = samples;
-        s.scene.objects.push_back(object_at(
-            1, plate(200.0, 0.4), scene::Trajectory::fixed(scene::Pose{{100.0, 0.0, 0.0}, scene::orientation_from_ypr_deg(60, 0, 0)})));
+        s.scene.objects.push_back(object_at(1, plate(800.0, 0.4),
+                                            scene::Trajectory::fixed(scene::Pose{
+                                                {100.0, 0.0, 0.0}, scene::orientation_from_ypr_deg(yaw_deg, 0, 0)})));
         FrameRenderer renderer(s);
         Frame f = renderer.render(0);
         return std::make_pair(std::move(f), renderer.rays_last_frame());
