@@ -9,11 +9,15 @@
 #include <filesystem>
 #include <exception>
 #include <iostream>
+#include <memory>
+#include <thread>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include "ladarsim/bench/benchmarks.h"
+#include "mpi_team.h"
 #include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/scene/input_error.h"
@@ -60,17 +64,25 @@ extern "C" void request_stop(int) { g_stop.store(true); }
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Under mpirun: the ranks share the frames of `render`; otherwise MPI never starts.
+    const std::unique_ptr<apps::MpiTeam> team = apps::MpiTeam::from_environment(&argc, &argv);
     CLI::App app{"ladarsim: a physically based LADAR simulator.\n"
                  "Renders ray-traced LADAR frames with ground truth from a scenario file."};
     app.require_subcommand(1);
 
-    std::string scenario_file, out_dir;
-    int frames = 0, threads = 0;
+    std::string out_dir;
+    std::vector<std::string> scenario_files;
+    int frames = 0, threads = 0, fail_at_frame = -1;
     std::uint64_t seed = 0;
     bool quiet = false;
-    auto* render = app.add_subcommand("render", "Render a scenario into a dataset directory");
-    render->add_option("scenario", scenario_file, "Scenario file (JSON, see docs/scenario.md)")->required();
-    render->add_option("--out", out_dir, "Output directory (created; existing frames are overwritten)")->required();
+    auto* render = app.add_subcommand(
+        "render", "Render a scenario into a dataset directory. Under mpirun the frames are shared among the ranks\n"
+                  "(mpirun -n N ladarsim render ...), with output identical to one process");
+    render->add_option("scenario", scenario_files, "Scenario file(s) (JSON, see docs/scenario.md)")->required();
+    render->add_option("--out", out_dir,
+                       "Output directory (created; an earlier dataset there is replaced); with several scenarios, "
+                       "one directory per scenario inside it, named after the file")
+        ->required();
     render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")->check(CLI::PositiveNumber);
     render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)");
     render->add_option("--threads", threads, "Worker threads (default: all cores); output does not depend on it")
@@ -79,6 +91,7 @@ int main(int argc, char** argv) {
     bool resume = false;
     render->add_flag("--resume", resume,
                      "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
+    render->add_option("--fail-at-frame", fail_at_frame, "For testing: make this frame fail");
 
     auto* sensor = app.add_subcommand("sensor", "Sensor presets");
     sensor->require_subcommand(1);
@@ -147,30 +160,40 @@ int main(int argc, char** argv) {
 
     try {
         if (*render) {
-            if (quiet) spdlog::set_level(spdlog::level::warn);
-            const sensor_model::Scenario scenario = sensor_model::load_scenario(scenario_file);
-            sensor_model::DatasetOptions options;
-            options.out_dir = out_dir;
-            if (render->count("--frames")) options.frames = frames;
-            if (render->count("--seed")) options.seed = seed;
-            options.threads = threads;
-            options.resume = resume;
-            options.stop = &g_stop;
-            std::signal(SIGINT, request_stop);
-            std::signal(SIGTERM, request_stop);
-            if (!quiet) {
-                options.progress = [](int done, int total) {
-                    std::fprintf(stderr, "\rframe %d/%d", done, total);
-                    if (done == total) std::fprintf(stderr, "\n");
-                };
+            if (quiet || (team && team->rank() != 0)) spdlog::set_level(spdlog::level::warn);
+            const bool speaking = !team || team->rank() == 0;
+            for (const std::string& file : scenario_files) {
+                const sensor_model::Scenario scenario = sensor_model::load_scenario(file);
+                sensor_model::DatasetOptions options;
+                options.out_dir = scenario_files.size() == 1 ? std::filesystem::path(out_dir)
+                                                             : std::filesystem::path(out_dir) / std::filesystem::path(file).stem();
+                if (render->count("--frames")) options.frames = frames;
+                if (render->count("--seed")) options.seed = seed;
+                // The ranks on one machine share its cores.
+                options.threads = threads > 0 || !team
+                                      ? threads
+                                      : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / team->local_size());
+                options.resume = resume;
+                options.stop = &g_stop;
+                options.team = team.get();
+                options.fail_at_frame = fail_at_frame;
+                std::signal(SIGINT, request_stop);
+                std::signal(SIGTERM, request_stop);
+                if (!quiet && speaking) {
+                    options.progress = [](int done, int total) {
+                        std::fprintf(stderr, "\rframe %d/%d", done, total);
+                        if (done == total) std::fprintf(stderr, "\n");
+                    };
+                }
+                const auto summary = sensor_model::render_dataset(scenario, options);
+                if (summary.interrupted) {
+                    if (speaking)
+                        std::fprintf(stderr, "\ninterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
+                                     summary.frames, summary.out_dir.string().c_str());
+                    return 130;
+                }
+                if (speaking) print_summary(scenario, summary);
             }
-            const auto summary = sensor_model::render_dataset(scenario, options);
-            if (summary.interrupted) {
-                std::fprintf(stderr, "\ninterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
-                             summary.frames, summary.out_dir.string().c_str());
-                return 130;
-            }
-            print_summary(scenario, summary);
         } else if (*bench_cmd) {
             const auto start = std::chrono::steady_clock::now();
             bench_options.progress = [start](const std::string& step) {
@@ -286,6 +309,10 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;
+    } catch (const sensor_model::FrameFailure& e) {
+        if (team && team->size() > 1) std::fprintf(stderr, "error: process %d of %d: %s\n", team->rank(), team->size(), e.what());
+        else std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

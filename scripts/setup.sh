@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libspdlog-dev libtbb-dev
-  libopenexr-dev libcli11-dev librandom123-dev libpcl-dev catch2
+  libopenexr-dev libcli11-dev librandom123-dev libpcl-dev catch2 libopenmpi-dev openmpi-bin
 )
 [ "${1:-}" = "--plots" ] && packages+=(python3-matplotlib python3-numpy)
 

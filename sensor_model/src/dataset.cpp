@@ -108,82 +108,112 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     if (options.seed) scenario.render.seed = *options.seed;
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
     tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    FrameTeam alone;
+    FrameTeam& team = options.team ? *options.team : alone;
+    const bool first_process = team.rank() == 0;
 
     // Built beside the destination and swapped in when complete: an interrupted run leaves a
     // previous dataset untouched, and a finished one never mixes with its stale frames.
     const std::filesystem::path out = checked_out_dir(options.out_dir);
     const std::filesystem::path staging = out.string() + ".partial";
-    const std::filesystem::path progress_file = staging / "progress.json";
+    const std::filesystem::path run_file = staging / "run.json";
     const std::filesystem::path frames_dir = staging / "frames";
+    const nlohmann::json run_key = {{"scenario", scenario.source}, {"seed", scenario.render.seed}, {"frames", scenario.render.frames}};
+    auto record_of = [&](int k) { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".log.json"); };
+    auto truth_of = [&](int k) { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".truth.json"); };
+
+    // Frames are independent given the scenario and seed (the gimbal is replayed from frame 0), so
+    // the frames an interrupted run left are exactly what this one would render again.
+    std::string setup_error;
+    if (first_process) {
+        try {
+            const bool resuming = options.resume && std::filesystem::exists(run_file);
+            if (resuming && read_json(run_file) != run_key)
+                throw InputError(run_file.string(), "run", "the interrupted run is of another scenario, seed or frame count");
+            if (!resuming) {
+                std::filesystem::remove_all(staging);
+                std::filesystem::create_directories(frames_dir);
+                write_json(run_file, run_key);
+            }
+        } catch (...) {
+            team.any(true);  // the others wait on this before rendering: release them first
+            throw;
+        }
+    }
+    if (team.any(false)) throw FrameFailure("the first process could not prepare " + staging.string());
 
     FrameRenderer renderer(scenario);
     DatasetSummary summary;
     summary.out_dir = out;
+    using Clock = std::chrono::steady_clock;
+    std::string failure;
+    bool stopped = false;
+    // Every process takes the same number of turns, so that the collective checks line up.
+    const int turns = (scenario.render.frames + team.size() - 1) / team.size();
+    for (int turn = 0; turn < turns; ++turn) {
+        const int k = turn * team.size() + team.rank();
+        stopped = options.stop && options.stop->load();
+        if (!stopped && k < scenario.render.frames && !std::filesystem::exists(record_of(k))) {
+            try {
+                if (k == options.fail_at_frame) throw std::runtime_error("failure injected for testing");
+                const auto started = Clock::now();
+                const Frame frame = renderer.render(static_cast<std::uint64_t>(k));
+                const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+                const std::string stem = frame_file_stem(frame.index);
+                write_frame_pcd(frames_dir / (stem + ".pcd"), frame);
+                write_frame_exr(frames_dir / (stem + ".exr"), frame);
+                write_ground_truth_json(truth_of(k), {ground_truth_of(frame)});
+                nlohmann::json by_object = nlohmann::json::object();
+                for (const auto& r : frame.returns) by_object[std::to_string(r.object_id)] = by_object.value(std::to_string(r.object_id), 0) + 1;
+                // Written last: its presence says the frame is complete.
+                write_json(record_of(k), {{"index", frame.index},
+                                          {"start_time_s", frame.start_time_s},
+                                          {"end_time_s", frame.end_time_s},
+                                          {"gimbal_az_rad", frame.gimbal_az_rad},
+                                          {"gimbal_el_rad", frame.gimbal_el_rad},
+                                          {"returns", frame.returns.size()},
+                                          {"returns_by_object", by_object},
+                                          {"render_s", seconds}});
+                summary.render_seconds += seconds;
+            } catch (const std::exception& e) {
+                failure = "frame " + std::to_string(k) + ": " + e.what();
+            }
+        }
+        if (team.any(!failure.empty() || stopped)) break;
+        if (options.progress && first_process) options.progress(std::min((turn + 1) * team.size(), scenario.render.frames), scenario.render.frames);
+    }
+    const bool any_failure = team.any(!failure.empty());
+    if (any_failure) {
+        throw FrameFailure(failure.empty() ? "another process of the run failed; finished frames are in " + staging.string()
+                                           : failure);
+    }
+
+    // What is on disk now: every record, from whichever process wrote it.
     std::vector<FrameGroundTruth> truth;
     std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
-    using Clock = std::chrono::steady_clock;
-    const nlohmann::json run_key = {{"scenario", scenario.source}, {"seed", scenario.render.seed}, {"frames", scenario.render.frames}};
-
-    int first = 0;
-    if (options.resume && std::filesystem::exists(progress_file)) {
-        // Frames are independent given the scenario and seed (the gimbal is replayed from frame 0),
-        // so the frames on disk are exactly what this run would render again.
-        const nlohmann::json progress = read_json(progress_file);
-        if (progress.at("run") != run_key)
-            throw InputError(progress_file.string(), "run", "the interrupted run is of another scenario, seed or frame count");
-        truth = read_ground_truth_json(staging / "ground_truth.partial.json");
-        frame_log = progress.at("frames");
-        first = static_cast<int>(frame_log.size());
-        for (const auto& f : frame_log) {
-            pointings.push_back({f.at("gimbal_az_rad").get<double>(), f.at("gimbal_el_rad").get<double>()});
-            summary.returns += f.at("returns").get<std::uint64_t>();
-            summary.render_seconds += f.at("render_s").get<double>();
-        }
-        for (const auto& [id, count] : progress.at("returns_by_object").items())
-            summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] = count.get<std::uint64_t>();
-    } else {
-        std::filesystem::remove_all(staging);
-        std::filesystem::create_directories(frames_dir);
+    double all_seconds = 0.0;
+    for (int k = 0; k < scenario.render.frames; ++k) {
+        if (!std::filesystem::exists(record_of(k))) continue;
+        nlohmann::json record = read_json(record_of(k));
+        for (const auto& [id, count] : record.at("returns_by_object").items())
+            summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();
+        record.erase("returns_by_object");
+        summary.returns += record.at("returns").get<std::uint64_t>();
+        all_seconds += record.at("render_s").get<double>();
+        pointings.push_back({record.at("gimbal_az_rad").get<double>(), record.at("gimbal_el_rad").get<double>()});
+        for (FrameGroundTruth& g : read_ground_truth_json(truth_of(k))) truth.push_back(std::move(g));
+        frame_log.push_back(std::move(record));
     }
-
-    for (int k = first; k < scenario.render.frames; ++k) {
-        if (options.stop && options.stop->load()) {
-            nlohmann::json by_object = nlohmann::json::object();
-            for (const auto& [id, count] : summary.returns_by_object) by_object[std::to_string(id)] = count;
-            write_ground_truth_json(staging / "ground_truth.partial.json", truth);
-            write_json(progress_file, {{"run", run_key}, {"frames", frame_log}, {"returns_by_object", by_object}});
-            summary.interrupted = true;
-            summary.frames = k;
-            return summary;
-        }
-        const auto started = Clock::now();
-        const Frame frame = renderer.render(static_cast<std::uint64_t>(k));
-        const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
-        summary.render_seconds += seconds;
-
-        const std::string stem = frame_file_stem(frame.index);
-        write_frame_pcd(frames_dir / (stem + ".pcd"), frame);
-        write_frame_exr(frames_dir / (stem + ".exr"), frame);
-
-        summary.returns += frame.returns.size();
-        for (const auto& r : frame.returns) ++summary.returns_by_object[r.object_id];
-        truth.push_back(ground_truth_of(frame));
-        pointings.push_back({frame.gimbal_az_rad, frame.gimbal_el_rad});
-        frame_log.push_back({{"index", frame.index},
-                             {"start_time_s", frame.start_time_s},
-                             {"end_time_s", frame.end_time_s},
-                             {"gimbal_az_rad", frame.gimbal_az_rad},
-                             {"gimbal_el_rad", frame.gimbal_el_rad},
-                             {"returns", frame.returns.size()},
-                             {"render_s", seconds}});
-        if (options.progress) options.progress(k + 1, scenario.render.frames);
-    }
-    summary.frames = scenario.render.frames;
+    summary.frames = static_cast<int>(frame_log.size());
+    summary.render_seconds = all_seconds;
     summary.beams_per_second =
-        summary.render_seconds > 0.0
-            ? double(renderer.raster().beam_count()) * summary.frames / summary.render_seconds
-            : 0.0;
+        all_seconds > 0.0 ? double(renderer.raster().beam_count()) * summary.frames / all_seconds : 0.0;
+    if (stopped || summary.frames < scenario.render.frames) {
+        summary.interrupted = true;
+        return summary;
+    }
+    if (!first_process) return summary;
 
     write_ground_truth_json(staging / "ground_truth.json", truth);
     summary.background_points = write_background_map(scenario, pointings, staging / "background.pcd");
@@ -195,6 +225,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         {"mount", mount_json(scenario.mount)},
         {"render", render_json(scenario.render)},
         {"threads", threads},
+        {"processes", team.size()},
         {"frames", frame_log},
         {"totals",
          {{"frames", summary.frames},
@@ -203,8 +234,11 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
           {"beams_per_s", summary.beams_per_second}}},
     };
     write_json(staging / "manifest.json", manifest);
-    std::filesystem::remove(progress_file);
-    std::filesystem::remove(staging / "ground_truth.partial.json");
+    for (int k = 0; k < scenario.render.frames; ++k) {
+        std::filesystem::remove(record_of(k));
+        std::filesystem::remove(truth_of(k));
+    }
+    std::filesystem::remove(run_file);
     swap_in(staging, out);
     return summary;
 }
