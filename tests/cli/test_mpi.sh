@@ -46,4 +46,19 @@ grep -q "frame 3: failure injected" "$work/stderr" || fail "the failure does not
 "$bin" render "$good" --out "$work/broken" --frames 7 --quiet --resume >/dev/null || fail "resume after a failure failed"
 same_dataset "$work/plain" "$work/broken"
 
+# Ctrl-C on mpirun: every rank stops after its current frame, and --resume under mpirun finishes
+# the same dataset.
+"$bin" render "$good" --out "$work/long" --frames 150 --quiet >/dev/null || fail "plain long render failed"
+"${mpirun[@]}" -n 2 "$bin" render "$good" --out "$work/cut" --frames 150 --quiet >/dev/null 2>&1 &
+pid=$!
+sleep 1
+kill -INT "$pid" 2>/dev/null
+wait "$pid"
+if [ -d "$work/cut.partial" ]; then
+  [ -z "$(find "$work/cut.partial" -name '*.tmp')" ] || fail "an interrupted MPI run left a temporary file"
+  [ ! -e "$work/cut" ] || fail "an interrupted MPI run published a dataset"
+fi
+"${mpirun[@]}" -n 2 "$bin" render "$good" --out "$work/cut" --frames 150 --quiet --resume >/dev/null 2>&1 || fail "MPI resume failed"
+same_dataset "$work/long" "$work/cut"
+
 if [ "$failures" -eq 0 ]; then echo "mpi: all checks passed"; else echo "mpi: $failures failed"; exit 1; fi
