@@ -2,13 +2,7 @@
 # End-to-end checks of the ladarsim command line: bad input is one clear line, a non-zero exit,
 # and nothing written; a good scenario writes a complete dataset.
 # Usage: test_cli.sh LADARSIM_BINARY SOURCE_DIR
-set -u
-bin=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
 
 # Each bad scenario: expected exit 2, one line on stderr naming the file and the field.
 expect_error() {

@@ -3,13 +3,7 @@
 # scenarios in one run, and a failing frame that stops every rank, exits non-zero, leaves no
 # partial file and can be resumed.
 # Usage: test_mpi.sh LADARSIM_BINARY SOURCE_DIR
-set -u
-bin=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
 # As root Open MPI needs to be told; two ranks may exceed the slots of a small machine.
 mpirun=(mpirun --allow-run-as-root --oversubscribe)
 good="$src/tests/cli/small.json"
