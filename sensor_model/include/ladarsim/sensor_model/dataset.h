@@ -32,7 +32,7 @@ struct DatasetOptions {
     /// Called after each frame is on disk.
     std::function<void(int frames_done, int frames_total)> progress;
     /// Checked before each frame: when it reads true the run stops, leaving `<out_dir>.partial`
-    /// with every finished frame and a progress.json that `resume` continues from.
+    /// with every finished frame and its record, which `resume` continues from.
     const std::atomic<bool>* stop = nullptr;
     /// Continue the interrupted run in `<out_dir>.partial` (same scenario, seed and frame count)
     /// instead of starting over; without one, start over.
