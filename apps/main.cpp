@@ -18,6 +18,7 @@
 
 #include "ladarsim/bench/benchmarks.h"
 #include "mpi_team.h"
+#include "viewer_server.h"
 #include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/scene/input_error.h"
@@ -145,6 +146,16 @@ int main(int argc, char** argv) {
     auto* assets = app.add_subcommand("make-assets", "Write the procedural glTF models ladarsim ships");
     assets->add_option("dir", assets_dir, "Output directory")->required();
 
+    std::string view_dir;
+    int view_port = 0;
+    bool no_browser = false;
+    auto* view_cmd = app.add_subcommand(
+        "view", "Look at a rendered run in the browser: frames (background by range, target, clutter, false alarms),\n"
+                "ground-truth and detected boxes, the field of view and the range image; serves on 127.0.0.1 only");
+    view_cmd->add_option("dir", view_dir, "Dataset directory (as written by render; detect/eval results are shown)")->required();
+    view_cmd->add_option("--port", view_port, "Port on 127.0.0.1 (default: a free one)")->check(CLI::Range(0, 65535));
+    view_cmd->add_flag("--no-browser", no_browser, "Only print the URL");
+
     bench::BenchOptions bench_options;
     std::string bench_json;
     auto* bench_cmd = app.add_subcommand(
@@ -194,6 +205,19 @@ int main(int argc, char** argv) {
                 }
                 if (speaking) print_summary(scenario, summary);
             }
+        } else if (*view_cmd) {
+            apps::ViewerOptions options;
+            options.run_dir = view_dir;
+            options.viewer_dir = LADARSIM_SOURCE_DIR "/apps/viewer";
+            options.port = view_port;
+            std::signal(SIGINT, request_stop);
+            std::signal(SIGTERM, request_stop);
+            apps::serve_viewer(options, [&](const std::string& url) {
+                std::printf("viewing %s at %s (Ctrl-C to stop)\n", view_dir.c_str(), url.c_str());
+                std::fflush(stdout);
+                if (!no_browser && std::system("command -v xdg-open >/dev/null 2>&1") == 0)
+                    (void)!std::system(("xdg-open '" + url + "' >/dev/null 2>&1 &").c_str());
+            }, g_stop);
         } else if (*bench_cmd) {
             const auto start = std::chrono::steady_clock::now();
             bench_options.progress = [start](const std::string& step) {

@@ -7,7 +7,10 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libspdlog-dev libtbb-dev
   libopenexr-dev libcli11-dev librandom123-dev libpcl-dev catch2 libopenmpi-dev openmpi-bin
+  chromium python3
 )
+# npm fetches the viewer's three.js; any Node.js that brings npm will do.
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 [ "${1:-}" = "--plots" ] && packages+=(python3-matplotlib python3-numpy)
 
 missing=()
@@ -22,4 +25,11 @@ if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The browser viewer's one dependency, pinned in apps/viewer/package-lock.json, installed locally.
+viewer="$(dirname "$0")/../apps/viewer"
+if [ ! -f "$viewer/node_modules/three/build/three.module.js" ]; then
+  echo "setup: installing three.js for the viewer"
+  (cd "$viewer" && npm ci --no-audit --no-fund --silent)
 fi

@@ -82,8 +82,11 @@ Points remove_outliers(const Points& points, double radius_m, int min_neighbours
     return out;
 }
 
-std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max_diagonal_m, std::size_t min_points) {
-    std::erase_if(clusters, [&](const Cluster& c) { return c.box.size.norm() > max_diagonal_m || c.points.size() < min_points; });
+std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max_diagonal_m, double beam_spread_rad,
+                                       std::size_t min_points) {
+    std::erase_if(clusters, [&](const Cluster& c) {
+        return c.box.size.norm() > max_diagonal_m + beam_spread_rad * c.box.centre.norm() || c.points.size() < min_points;
+    });
     return clusters;
 }
 

@@ -136,7 +136,8 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
 
     const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
     std::vector<Cluster> candidates =
-        plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, static_cast<std::size_t>(config_.min_neighbours) + 1);
+        plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, config_.beam_spread_mrad * 1e-3,
+                          static_cast<std::size_t>(config_.min_neighbours) + 1);
 
     // The candidate: nearest the expected position when there is one, else nearest the boresight
     // (the radar cue put the target there), else the largest.

@@ -79,9 +79,13 @@ TEST_CASE("outlier removal keeps points with nMin neighbours; boxes over 1 m are
     std::vector<Cluster> clusters = rbnn(wall(300.0f, 0.1f, 21), 0.15);
     const auto drone = rbnn(drone_at({600.0f, 0.0f, 20.0f}), 0.3);
     clusters.insert(clusters.end(), drone.begin(), drone.end());
-    const auto kept = plausible_targets(clusters, 1.0, 4);
+    const auto kept = plausible_targets(clusters, 1.0, 0.0, 4);
     REQUIRE(kept.size() == 1);
     CHECK(kept[0].points.size() == 16);
+    // With the beam's spread allowed (0.93 mrad: 0.28 m more at 300 m) the wall is still too big;
+    // 1.5 m square at 2 km is what a 0.3 m target bloomed by 1.9 m footprints looks like.
+    CHECK(plausible_targets(rbnn(wall(300.0f, 0.1f, 21), 0.15), 1.0, 0.93e-3, 4).empty());
+    CHECK(plausible_targets(rbnn(wall(2000.0f, 0.075f, 21), 0.15), 1.0, 0.93e-3, 4).size() == 1);
 }
 
 TEST_CASE("the tracker predicts a straight track through dropped frames (FIR) and resumes", "[detect]") {

@@ -30,6 +30,9 @@ struct DetectorConfig {
     double background_resolution_m = 1.0;
     int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
     double max_diagonal_m = 1.0;     ///< occlusion removal
+    /// Occlusion removal also allows a footprint's width per metre of range (plausible_targets):
+    /// 1.5 x the paper's 0.62 mrad divergence.
+    double beam_spread_mrad = 0.93;
     /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000.
     /// Read as millimetres that is 1 m between frames, 20 m/s at 20 Hz, slower than the paper's own
     /// fast targets. Here: the chosen cluster's range may differ from the FIR prediction's by at
