@@ -4,8 +4,6 @@
 #include <cmath>
 #include <map>
 #include <numbers>
-#include <cstdio>
-#include <cstdlib>
 
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/range_equation.h"
