@@ -4,7 +4,9 @@
 # partial file and can be resumed.
 # Usage: test_mpi.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
-# As root Open MPI needs to be told; two ranks may exceed the slots of a small machine.
+# As root Open MPI needs to be told; two ranks may exceed the slots of a small machine; inside
+# containers the shared-memory transport's cross-memory attach is often not permitted.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
 mpirun=(mpirun --allow-run-as-root --oversubscribe)
 good="$src/tests/cli/small.json"
 

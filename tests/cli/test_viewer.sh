@@ -35,7 +35,7 @@ done
 [[ $(get_status /run/manifest.json) == *" 200"* ]] || fail "the manifest is not served"
 
 # The page in a browser: its state against the files of frame 1.
-chrome=(chromium --headless=new --no-sandbox --disable-gpu --enable-unsafe-swiftshader --use-angle=swiftshader
+chrome=(chromium --headless=new --no-sandbox --disable-dev-shm-usage --disable-gpu --enable-unsafe-swiftshader --use-angle=swiftshader
         --virtual-time-budget=10000 --window-size=1280,720)
 "${chrome[@]}" --dump-dom "${url}?frame=1" 2>/dev/null >"$work/dom.html"
 state=$(grep -o '<pre id="state">[^<]*' "$work/dom.html" | sed 's/<pre id="state">//')
