@@ -1,6 +1,7 @@
 #include "ladarsim/scene/background_map.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -17,6 +18,7 @@
 #include <pcl/exceptions.h>
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 #include <spdlog/spdlog.h>
@@ -112,13 +114,18 @@ void check_pcd_header(const std::filesystem::path& file) {
     throw InputError(name, "(header)", "not a PCD file: no DATA line in the first 64 lines");
 }
 
-pcl::PCLPointCloud2 read_pcd(const std::filesystem::path& file) {
+/// Reads a PCD or PLY file (by extension) with PCL's own reader, which reports its failures on
+/// stderr: silenced, ours is the one clear line.
+pcl::PCLPointCloud2 read_point_cloud(const std::filesystem::path& file) {
     const std::string name = file.string();
     if (!std::filesystem::is_regular_file(file)) throw InputError(name, "(file)", "no such file");
-    check_pcd_header(file);
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool ply = extension == ".ply";
+    const std::string kind = ply ? "PLY" : "PCD";
+    if (!ply) check_pcd_header(file);
     pcl::PCLPointCloud2 cloud;
     int status = -1;
-    // PCL reports its own failures on stderr; ours is the one clear line.
     const pcl::console::VERBOSITY_LEVEL verbosity = pcl::console::getVerbosityLevel();
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
     struct Restore {
@@ -126,14 +133,14 @@ pcl::PCLPointCloud2 read_pcd(const std::filesystem::path& file) {
         ~Restore() { pcl::console::setVerbosityLevel(level); }
     } restore{verbosity};
     try {
-        status = pcl::io::loadPCDFile(name, cloud);
+        status = ply ? pcl::io::loadPLYFile(name, cloud) : pcl::io::loadPCDFile(name, cloud);
     } catch (const pcl::PCLException& e) {
-        throw InputError(name, "(file)", std::string("not a readable PCD file: ") + e.what());
+        throw InputError(name, "(file)", "not a readable " + kind + " file: " + e.what());
     }
-    if (status < 0) throw InputError(name, "(file)", "not a readable PCD file");
+    if (status < 0) throw InputError(name, "(file)", "not a readable " + kind + " file");
     const std::size_t n = std::size_t{cloud.width} * cloud.height;
     if (cloud.data.size() < n * cloud.point_step) {
-        throw InputError(name, "(file)", "PCD data is shorter than its header says");
+        throw InputError(name, "(file)", kind + " data is shorter than its header says");
     }
     return cloud;
 }
@@ -183,7 +190,7 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
         map.points_world.reserve(las.points.size());
         for (std::size_t i = 0; i < las.points.size(); ++i) add(las.points[i], double(las.intensity[i]));
     } else {
-        const pcl::PCLPointCloud2 cloud2 = read_pcd(file);
+        const pcl::PCLPointCloud2 cloud2 = read_point_cloud(file);
         const pcl::PCLPointField* fx = find_field(cloud2, "x");
         const pcl::PCLPointField* fy = find_field(cloud2, "y");
         const pcl::PCLPointField* fz = find_field(cloud2, "z");

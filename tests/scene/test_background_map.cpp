@@ -54,6 +54,26 @@ fs::path write_pcd(const fs::path& file, const std::vector<PcdPoint>& points, bo
     return file;
 }
 
+/// Writes the same points as a PLY vertex list with x y z intensity (doubles and a float),
+/// ASCII or little-endian binary.
+fs::path write_ply(const fs::path& file, const std::vector<PcdPoint>& points, bool binary) {
+    std::ofstream out(file, std::ios::binary);
+    out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\nelement vertex " << points.size()
+        << "\nproperty double x\nproperty double y\nproperty double z\nproperty float intensity\nend_header\n";
+    out << std::setprecision(17);
+    for (const auto& p : points) {
+        if (binary) {
+            const double xyz[3] = {p.x, p.y, p.z};
+            const float i = static_cast<float>(p.intensity);
+            out.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+            out.write(reinterpret_cast<const char*>(&i), sizeof i);
+        } else {
+            out << p.x << ' ' << p.y << ' ' << p.z << ' ' << p.intensity << '\n';
+        }
+    }
+    return file;
+}
+
 /// nx by ny nodes with spacings sx, sy, on the plane z = a x + b y + c, starting at (x0, y0).
 std::vector<PcdPoint> grid(int nx, int ny, double sx, double sy, double a = 0.0, double b = 0.0, double c = 0.0,
                            double x0 = 0.0, double y0 = 0.0) {
@@ -210,6 +230,28 @@ TEST_CASE("background_map: reflectance from intensity, from the option, or the d
         const BackgroundMap map = load_background_map(write_pcd(dir.path / "no_i.pcd", pts, false), {});
         for (float r : map.reflectance) CHECK(r == Approx(kDefaultReflectance));
     }
+}
+
+TEST_CASE("background_map: a PLY map, ASCII or binary, is the same map as its PCD", "[background_map]") {
+    TempDir dir;
+    // A tilted plane far from the origin with varying intensity: every part of the map differs
+    // from point to point.
+    auto pts = grid(12, 9, 0.7, 0.5, 0.1, -0.05, 40.0, 512000.0, 4875000.0);
+    for (std::size_t i = 0; i < pts.size(); ++i) pts[i].intensity = static_cast<double>((i * 37) % 200);
+    const BackgroundMap pcd = load_background_map(write_pcd(dir.path / "m.pcd", pts, true), {});
+    for (const bool binary : {false, true}) {
+        INFO((binary ? "binary" : "ascii") << " PLY");
+        const BackgroundMap ply = load_background_map(write_ply(dir.path / (binary ? "b.ply" : "a.ply"), pts, binary), {});
+        REQUIRE(ply.points_world.size() == pcd.points_world.size());
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            CHECK((ply.points_world[i] - pcd.points_world[i]).norm() < 1e-9);
+            CHECK((ply.normals[i] - pcd.normals[i]).norm() < 1e-6f);
+            CHECK(ply.radii_m[i] == Approx(pcd.radii_m[i]).epsilon(1e-6));
+            CHECK(ply.reflectance[i] == Approx(pcd.reflectance[i]).epsilon(1e-6));
+        }
+    }
+    std::ofstream(dir.path / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 10\nproperty float x\nend_header\n1\n";
+    CHECK_THROWS_WITH(load_background_map(dir.path / "broken.ply", {}), Contains("broken.ply"));
 }
 
 TEST_CASE("background_map: bad files are InputErrors naming the file", "[background_map]") {
