@@ -123,7 +123,13 @@ BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, GimbalPointing poin
     return a;
 }
 
-std::uint64_t FrameRenderer::probe_row(int row, GimbalPointing pointing, double frame_start_s) {
+std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double frame_start_s) {
+    for (int step = 0; step < raster_.columns(); ++step) {
+        const RasterBeam beam = raster_.beam(row, step);
+        aims_[static_cast<std::size_t>(row * raster_.columns() + beam.column)] = aim(beam, step, pointing, frame_start_s);
+    }
+    if (!integrator_.adaptive()) return 0;
+
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
     thread_local std::vector<std::optional<raytrace::Hit>*> slots;
@@ -138,12 +144,11 @@ std::uint64_t FrameRenderer::probe_row(int row, GimbalPointing pointing, double 
         rays.push_back(r);
         slots.push_back(slot);
     };
+    // In firing order: neighbouring rays of the stream leave in nearly the same direction.
     for (int step = 0; step < raster_.columns(); ++step) {
-        const RasterBeam beam = raster_.beam(row, step);
-        const BeamAim a = aim(beam, step, pointing, frame_start_s);
-        const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
-        axis_direction_[cell] = a.world_from_beam.col(0);
-        add(axis_direction_[cell], a.time_s, &axis_hit_[cell]);
+        const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + raster_.beam(row, step).column);
+        const BeamAim& a = aims_[cell];
+        add(a.world_from_beam.col(0), a.time_s, &axis_hit_[cell]);
         for (int k = 0; k < 4; ++k) {
             if (!(extra_mask_[cell] & (1u << k))) continue;
             extra_direction_[4 * cell + k] = a.world_from_beam * integrator_.in_beam(extra_offsets_[k].x(), extra_offsets_[k].y());
@@ -156,8 +161,7 @@ std::uint64_t FrameRenderer::probe_row(int row, GimbalPointing pointing, double 
     return rays.size();
 }
 
-std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, double frame_start_s,
-                                             std::uint64_t frame, std::uint64_t& rays) const {
+std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::uint64_t& rays) const {
     const auto& sensor = scenario_.sensor;
     const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
@@ -168,16 +172,16 @@ std::vector<Return> FrameRenderer::trace_row(int row, GimbalPointing pointing, d
 
     for (int step = 0; step < raster_.columns(); ++step) {
         const RasterBeam beam = raster_.beam(row, step);
-        const BeamAim a = aim(beam, step, pointing, frame_start_s);
+        const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
+        const BeamAim& a = aims_[cell];
         probes.clear();
         if (integrator_.adaptive()) {
-            const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
-            probes.push_back({0.0, 0.0, 1.0, axis_direction_[cell], &axis_hit_[cell]});
+            probes.push_back({0.0, 0.0, 1.0, a.world_from_beam.col(0), &axis_hit_[cell]});
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = beam.column + n.d_column;
                 if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
                 const std::size_t other = static_cast<std::size_t>(r * raster_.columns() + c);
-                probes.push_back({n.x_rad, n.y_rad, n.irradiance, axis_direction_[other], &axis_hit_[other]});
+                probes.push_back({n.x_rad, n.y_rad, n.irradiance, aims_[other].world_from_beam.col(0), &axis_hit_[other]});
             }
             for (int k = 0; k < 4; ++k) {
                 if (!(extra_mask_[cell] & (1u << k))) continue;
@@ -260,21 +264,20 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     traced_.set_time_window(frame.start_time_s, frame.end_time_s, scenario_.render.motion_steps);
 
     const std::size_t rows = static_cast<std::size_t>(raster_.rows());
+    const std::size_t cells = static_cast<std::size_t>(raster_.beam_count());
     std::vector<std::uint64_t> rays_by_row(rows, 0);
+    aims_.resize(cells);
     if (integrator_.adaptive()) {
-        const std::size_t cells = static_cast<std::size_t>(raster_.beam_count());
-        axis_direction_.resize(cells);
         axis_hit_.resize(cells);
         extra_direction_.resize(4 * cells);
         extra_hit_.resize(4 * cells);
-        tbb::parallel_for(0, raster_.rows(), [&](int row) {
-            rays_by_row[static_cast<std::size_t>(row)] = probe_row(row, pointing, frame.start_time_s);
-        });
     }
+    tbb::parallel_for(0, raster_.rows(), [&](int row) {
+        rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
+    });
     std::vector<std::vector<Return>> by_row(rows);
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
-        by_row[static_cast<std::size_t>(row)] =
-            trace_row(row, pointing, frame.start_time_s, index, rays_by_row[static_cast<std::size_t>(row)]);
+        by_row[static_cast<std::size_t>(row)] = trace_row(row, index, rays_by_row[static_cast<std::size_t>(row)]);
     });
     rays_last_frame_ = 0;
     for (const std::uint64_t r : rays_by_row) rays_last_frame_ += r;

@@ -52,11 +52,11 @@ private:
     };
     BeamAim aim(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const;
     void find_neighbours();
-    /// Pass 1: the axes and extra probes of one raster line. Returns the rays traced.
-    std::uint64_t probe_row(int row, GimbalPointing pointing, double frame_start_s);
-    /// All returns of one raster line, in column order; adds the rays traced to `rays`.
-    std::vector<Return> trace_row(int row, GimbalPointing pointing, double frame_start_s, std::uint64_t frame,
-                                  std::uint64_t& rays) const;
+    /// Pass 1: where and when the beams of one raster line fire and, for adaptive footprints,
+    /// their axes and extra probes traced. Returns the rays traced.
+    std::uint64_t aim_row(int row, GimbalPointing pointing, double frame_start_s);
+    /// Pass 2: all returns of one raster line, in column order; adds the rays traced to `rays`.
+    std::vector<Return> trace_row(int row, std::uint64_t frame, std::uint64_t& rays) const;
     std::vector<GroundTruthObject> ground_truth(double time_s, const std::vector<Return>& returns) const;
     GimbalPointing cue_pointing(double time_s) const;
 
@@ -71,7 +71,8 @@ private:
     std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
     double extra_irradiance_ = 0.0;
     // Pass 1 results, by raster cell (row, column); extra probes at 4 * cell + k.
-    std::vector<Eigen::Vector3d> axis_direction_, extra_direction_;
+    std::vector<BeamAim> aims_;
+    std::vector<Eigen::Vector3d> extra_direction_;
     std::vector<std::optional<raytrace::Hit>> axis_hit_, extra_hit_;
     std::uint64_t rays_last_frame_ = 0;
 };
