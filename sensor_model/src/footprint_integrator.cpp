@@ -141,21 +141,10 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     out.rays = 0;
     if (!adaptive_) {
         thread_local std::vector<SubRay> sub_rays;
-        thread_local std::vector<double> uniforms;
-        const int n = footprint_.samples();
-        sub_rays.resize(static_cast<std::size_t>(n));
-        if (scenario_.render.jitter) {
-            uniforms.resize(2 * static_cast<std::size_t>(n));
-            for (int i = 0; i < n; ++i) {
-                const auto u = uniform4(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell,
-                                        static_cast<std::uint32_t>(i));
-                uniforms[2 * i] = u[0];
-                uniforms[2 * i + 1] = u[1];
-            }
-            footprint_.jittered(sub_rays, uniforms);
-        } else {
-            footprint_.fixed(sub_rays);
-        }
+        sub_rays.resize(static_cast<std::size_t>(footprint_.samples()));
+        const std::span<const double> u = jitter(aim, frame, 0, sub_rays.size());
+        if (u.empty()) footprint_.fixed(sub_rays);
+        else footprint_.jittered(sub_rays, u);
         trace(aim, sub_rays, traced_.has_volumes(), frame, 0, out, nullptr);
         return;
     }
@@ -225,11 +214,22 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         sample(aim, whole, std::nullopt, 1.0, media, frame, out);
 }
 
+std::span<const double> FootprintIntegrator::jitter(const BeamAim& aim, std::uint64_t frame, std::uint32_t first_sample,
+                                                    std::size_t cells) const {
+    if (!scenario_.render.jitter) return {};
+    thread_local std::vector<double> uniforms;
+    uniforms.resize(2 * cells);
+    // Two cells per block of four draws: the blocks of `cells` cells starting at `first_sample`
+    // end before those of the next `cells` start.
+    RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, first_sample);
+    for (double& u : uniforms) u = draws.uniform();
+    return uniforms;
+}
+
 template <class Region>
 double FootprintIntegrator::sample(const BeamAim& aim, const Region& region, const std::optional<FootprintRect>& excluded,
                                    double share, bool media, std::uint64_t frame, BeamEchoes& out) const {
     thread_local std::vector<SubRay> grid, kept;
-    thread_local std::vector<double> uniforms;
     thread_local std::vector<Tally> tally, previous;
     const std::size_t surface_before = out.surface.size();
     const std::size_t volume_before = out.volume.size();
@@ -239,15 +239,7 @@ double FootprintIntegrator::sample(const BeamAim& aim, const Region& region, con
         const int n = 1 << level;
         const std::size_t cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
         grid.resize(cells);
-        if (scenario_.render.jitter) {
-            uniforms.resize(2 * cells);
-            // Two cells per block of four draws; a level's blocks end before the next level's start.
-            RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, first_sample);
-            for (double& u : uniforms) u = draws.uniform();
-            footprint_.grid(region, n, grid, uniforms);
-        } else {
-            footprint_.grid(region, n, grid);
-        }
+        footprint_.grid(region, n, grid, jitter(aim, frame, first_sample, cells));
         kept.clear();
         double kept_weight = 0.0;
         for (const SubRay& sub : grid) {

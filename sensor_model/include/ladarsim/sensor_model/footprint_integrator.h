@@ -90,6 +90,10 @@ public:
     };
 
 private:
+    /// Two uniforms per cell for jittering `cells` cells, keyed by (frame, beam, first_sample);
+    /// empty without jitter.
+    std::span<const double> jitter(const BeamAim& aim, std::uint64_t frame, std::uint32_t first_sample,
+                                   std::size_t cells) const;
     /// Samples `region` (minus `excluded`) until converged. With `share` > 0 the sampled cells carry
     /// that share of the beam, otherwise their own energy. Returns the share sampled.
     template <class Region>
