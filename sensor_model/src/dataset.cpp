@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <map>
 #include <optional>
 #include <filesystem>
 
@@ -163,8 +164,10 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
                 write_frame_pcd(frames_dir / (stem + ".pcd"), frame);
                 write_frame_exr(frames_dir / (stem + ".exr"), frame);
                 write_ground_truth_json(truth_of(k), {ground_truth_of(frame)});
+                std::map<std::uint32_t, std::uint64_t> counts;
+                for (const auto& r : frame.returns) ++counts[r.object_id];
                 nlohmann::json by_object = nlohmann::json::object();
-                for (const auto& r : frame.returns) by_object[std::to_string(r.object_id)] = by_object.value(std::to_string(r.object_id), 0) + 1;
+                for (const auto& [id, count] : counts) by_object[std::to_string(id)] = count;
                 // Written last: its presence says the frame is complete.
                 write_json(record_of(k), {{"index", frame.index},
                                           {"start_time_s", frame.start_time_s},
@@ -174,7 +177,6 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
                                           {"returns", frame.returns.size()},
                                           {"returns_by_object", by_object},
                                           {"render_s", seconds}});
-                summary.render_seconds += seconds;
             } catch (const std::exception& e) {
                 failure = "frame " + std::to_string(k) + ": " + e.what();
             }
@@ -192,7 +194,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     std::vector<FrameGroundTruth> truth;
     std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
-    double all_seconds = 0.0;
+
     for (int k = 0; k < scenario.render.frames; ++k) {
         if (!std::filesystem::exists(record_of(k))) continue;
         nlohmann::json record = read_json(record_of(k));
@@ -200,15 +202,14 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
             summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();
         record.erase("returns_by_object");
         summary.returns += record.at("returns").get<std::uint64_t>();
-        all_seconds += record.at("render_s").get<double>();
+        summary.render_seconds += record.at("render_s").get<double>();
         pointings.push_back({record.at("gimbal_az_rad").get<double>(), record.at("gimbal_el_rad").get<double>()});
         for (FrameGroundTruth& g : read_ground_truth_json(truth_of(k))) truth.push_back(std::move(g));
         frame_log.push_back(std::move(record));
     }
     summary.frames = static_cast<int>(frame_log.size());
-    summary.render_seconds = all_seconds;
     summary.beams_per_second =
-        all_seconds > 0.0 ? double(renderer.raster().beam_count()) * summary.frames / all_seconds : 0.0;
+        summary.render_seconds > 0.0 ? double(renderer.raster().beam_count()) * summary.frames / summary.render_seconds : 0.0;
     if (stopped || summary.frames < scenario.render.frames) {
         summary.interrupted = true;
         return summary;
