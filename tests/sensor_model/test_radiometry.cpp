@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <limits>
 
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/range_equation.h"
+#include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
@@ -26,7 +26,7 @@ double polygon_area() { return 0.5 * kSegments * kDiscRadius * kDiscRadius * std
 /// jittered footprints. Noise, extinction and saturation are off, and the laser is strong enough
 /// that the threshold never hides a return: what is left is geometry and the range equation.
 double rendered_photoelectrons(double range_m, int frames, SensorConfig& sensor_out) {
-    Scenario s;
+    Scenario s = closed_form_scenario();
     s.sensor.beams_az = 1;
     s.sensor.beams_el = 1;
     s.sensor.field_az_deg = 1e-3;
@@ -34,13 +34,7 @@ double rendered_photoelectrons(double range_m, int frames, SensorConfig& sensor_
     s.sensor.footprint_samples = 4096;
     s.sensor.peak_power_w = 1e12;
     s.sensor.saturation_current_a = 1e9;
-    s.sensor.range_folding = false;
     s.sensor.max_range_m = 1e6;
-    s.render.noise = false;
-    s.render.jitter = true;
-    s.atmosphere.visibility_m = std::numeric_limits<double>::infinity();
-    s.mount.gimbal_az_deg = 0.0;
-    s.mount.gimbal_el_deg = 0.0;
     s.scene.objects.push_back(object_at(1, disc(kDiscRadius, kSegments, kReflectance), fixed_at(range_m, 0, 0)));
     sensor_out = s.sensor;
     FrameRenderer renderer(s);
@@ -53,14 +47,8 @@ double rendered_photoelectrons(double range_m, int frames, SensorConfig& sensor_
     return sum / frames;
 }
 
-/// Photo-electrons if the whole pulse fell on a Lambertian surface facing the sensor at range R:
-/// the extended-target range equation, E eta (rho / pi) A_r / R^2 x responsivity / q.
-double extended(const SensorConfig& c, double range_m) {
-    const double pulse = c.peak_power_w * c.pulse_width_ns * 1e-9 * std::sqrt(M_PI / (4.0 * std::log(2.0)));
-    const double area = M_PI / 4.0 * c.aperture_diameter_m * c.aperture_diameter_m;
-    return pulse * c.optics_efficiency * kReflectance / M_PI * area / (range_m * range_m) * c.responsivity_a_per_w /
-           1.602176634e-19;
-}
+/// Photo-electrons if the whole pulse fell on the disc's Lambertian surface facing the sensor.
+double extended(const SensorConfig& c, double range_m) { return extended_target_photoelectrons(c, kReflectance, 1.0, range_m); }
 
 /// Fraction of the footprint's energy on the disc. The footprint is Gaussian with 1/e^2 radius
 /// w = theta R / 2, truncated at 1.5 w (holding F = 1 - exp(-4.5)) and renormalised: a centred disc

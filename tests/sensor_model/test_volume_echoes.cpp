@@ -8,6 +8,7 @@
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/volume_echoes.h"
+#include "../support/closed_form_scenario.h"
 #include "../support/atmospheres.h"
 #include "../support/scene_builders.h"
 
@@ -60,17 +61,11 @@ TEST_CASE("free-path sampling of backscatter is an unbiased estimate of its inte
 }
 
 TEST_CASE("a sensor inside fog: the wall behind is dimmed by exp(-2 tau), the fog itself returns", "[volume]") {
-    Scenario s;
+    Scenario s = test::closed_form_scenario();
     s.sensor.beams_az = 5;
     s.sensor.beams_el = 1;
     s.sensor.field_az_deg = 0.01;
     s.sensor.field_el_deg = 0.01;
-    s.sensor.range_folding = false;
-    s.sensor.saturation_current_a = 1e6;
-    s.render.noise = false;
-    s.atmosphere = test::vacuum();
-    s.mount.gimbal_az_deg = 0.0;
-    s.mount.gimbal_el_deg = 0.0;
     const double mor = 100.0, fog_end = 30.0, wall = 80.0;
     // The fog box runs from x = -20 m (behind the sensor) to 30 m: the beams start inside it.
     s.scene.objects.push_back(object_at(1, fog_box(-20.0, fog_end, 10.0, mor), fixed_at(5.0, 0.0, -10.0), scene::ObjectClass::cloud));

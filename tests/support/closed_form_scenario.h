@@ -1,9 +1,9 @@
 #pragma once
 // A scenario for checks against closed forms, and the closed form most of them use.
 #include <cmath>
-#include <limits>
 
 #include "ladarsim/sensor_model/scenario.h"
+#include "atmospheres.h"
 
 namespace ladarsim::test {
 
@@ -16,7 +16,7 @@ inline sensor_model::Scenario closed_form_scenario() {
     s.mount.gimbal_el_deg = 0.0;
     s.render.frames = 1;
     s.render.noise = false;
-    s.atmosphere.visibility_m = std::numeric_limits<double>::infinity();
+    s.atmosphere = vacuum();
     s.sensor.range_folding = false;
     s.sensor.saturation_current_a = 1e6;
     return s;
