@@ -360,7 +360,9 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
         const double model_range = plane_distance / nd;
         const double model = reflectance * std::abs(nd) / (model_range * model_range);
         const double seen = h.reflectance * h.cos_incidence / (h.range_m * h.range_m);
-        const double q = seen / model;
+        // A black patch (reflectance 0, e.g. a map point recorded with intensity 0) sees nothing
+        // and the plane predicts nothing: they agree.
+        const double q = model > 0.0 ? seen / model : 1.0;
         q_sum += gauss[k] * q;
         q2_sum += gauss[k] * q * q;
         g2_sum += gauss[k] * gauss[k];

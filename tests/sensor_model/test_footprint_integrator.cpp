@@ -172,3 +172,22 @@ TEST_CASE("from a 10 m wall to a small plate at 2 km, each energy matches its cl
     // What was rendered spans more than six decades, each end matching its closed form.
     CHECK(near_rendered / (far.rendered / far.expected_detectable) > 1e6);
 }
+
+TEST_CASE("a black surface (reflectance 0) is a plane patch that returns nothing, not NaN", "[footprint]") {
+    // Recorded maps hold points of intensity 0: the plane's model energy is then 0 as well, and
+    // the patch must not divide one by the other. A bright plate in front of the black wall puts
+    // two surfaces 0.2 m apart in the beams around it, whose pulses overlap in one waveform.
+    Scenario s = closed_form_scenario();
+    s.render.noise = true;
+    s.scene.objects.push_back(object_at(1, plate(800.0, 0.0), scene::Trajectory::fixed(scene::Pose{{100.0, 0.0, 0.0}, {}})));
+    s.scene.objects.push_back(object_at(2, plate(0.3, 0.5), scene::Trajectory::fixed(scene::Pose{{99.8, 0.0, 0.0}, {}})));
+    FrameRenderer renderer(s);
+    const Frame f = renderer.render(0);
+    int plate_returns = 0;
+    for (const Return& r : f.returns) {
+        REQUIRE(std::isfinite(r.range_m));
+        CHECK(r.object_id != 1);
+        plate_returns += r.object_id == 2;
+    }
+    CHECK(plate_returns > 0);
+}
