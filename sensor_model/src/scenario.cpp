@@ -6,7 +6,7 @@
 #include "ladarsim/scene/json_fields.h"
 #include "ladarsim/scene/scene_file.h"
 #include "ladarsim/scene/trajectory.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "scenario_document.h"
 
 namespace ladarsim::sensor_model {
 
@@ -46,7 +46,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
     const std::string name = file.string();
     Scenario s;
     s.file = file;
-    s.source = read_json(file);
+    s.source = read_scenario_document(file);
 
     JsonFields top(s.source, name, "");
     {
