@@ -145,25 +145,44 @@ pcl::PCLPointCloud2 read_point_cloud(const std::filesystem::path& file) {
     return cloud;
 }
 
-/// Least-squares plane normal of the neighbourhood, or nullopt when the points do not span a
-/// plane (fewer than three distinct points, or all on one line). PCL's NormalEstimation returns
-/// NaN only for the first case and an arbitrary normal for the second, so the eigenvalues are
-/// checked here.
-std::optional<Eigen::Vector3f> plane_normal(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                                            const pcl::Indices& neighbours) {
+/// Least-squares plane of a neighbourhood: its normal, unless the points do not span a plane
+/// (fewer than three distinct points, or all on one line), and the direction the points spread
+/// along most. PCL's NormalEstimation returns NaN only for the first case and an arbitrary normal
+/// for the second, so the eigenvalues are checked here.
+struct NeighbourhoodPlane {
+    std::optional<Eigen::Vector3f> normal;
+    Eigen::Vector3f axis = Eigen::Vector3f::Zero();  ///< largest spread; zero without three points
+};
+
+NeighbourhoodPlane fit_plane(const pcl::PointCloud<pcl::PointXYZ>& cloud, const pcl::Indices& neighbours) {
+    NeighbourhoodPlane plane;
     Eigen::Matrix3d covariance;
     Eigen::Vector4d centroid;
-    if (pcl::computeMeanAndCovarianceMatrix(cloud, neighbours, covariance, centroid) < 3) return std::nullopt;
+    if (pcl::computeMeanAndCovarianceMatrix(cloud, neighbours, covariance, centroid) < 3) return plane;
     Eigen::Matrix3d eigenvectors;
     Eigen::Vector3d eigenvalues;  // ascending
     pcl::eigen33(covariance, eigenvectors, eigenvalues);
+    if (eigenvectors.col(2).allFinite()) plane.axis = eigenvectors.col(2).cast<float>().normalized();
     // A middle eigenvalue a millionth of the largest means the points lie on a line to within
     // a thousandth of its length: any normal about that line fits equally well.
-    if (!(eigenvalues[1] > 1e-6 * eigenvalues[2])) return std::nullopt;
-    Eigen::Vector3f normal = eigenvectors.col(0).cast<float>().normalized();
-    if (!normal.allFinite()) return std::nullopt;
-    return normal;
+    if (!(eigenvalues[1] > 1e-6 * eigenvalues[2])) return plane;
+    const Eigen::Vector3f normal = eigenvectors.col(0).cast<float>().normalized();
+    if (normal.allFinite()) plane.normal = normal;
+    return plane;
 }
+
+/// The unit vector closest to `towards` that is perpendicular to `axis` (a line's best normal as
+/// seen from there); `towards` itself when the axis is unknown or along it.
+Eigen::Vector3f facing_across(const Eigen::Vector3f& towards, const Eigen::Vector3f& axis) {
+    const Eigen::Vector3f across = towards - towards.dot(axis) * axis;
+    return across.norm() > 1e-6f ? across.normalized() : towards;
+}
+
+// A ground-based scanner samples a surface along scan lines: the neighbours of a point lie on
+// the cone its channel swept, spread along the line and, by range noise, along the lines of sight.
+// Their plane fit then contains the lines of sight: a plane within this cosine of edge-on to the
+// scanner that recorded it is an artefact of the sampling (such a surface would hardly return).
+constexpr float kScanLineCos = 0.1f;
 
 }  // namespace
 
@@ -235,11 +254,20 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
     for (std::size_t i = 0; i < n; ++i) {
         tree.nearestKSearch((*cloud)[i], k_search, neighbours, squared_distances);
         const pcl::Indices plane_points(neighbours.begin(), neighbours.begin() + k_normal);
-        if (auto normal = plane_normal(*cloud, plane_points)) {
-            map.normals[i] = normal->z() < 0.0f ? Eigen::Vector3f(-*normal) : *normal;
-        } else {
-            map.normals[i] = Eigen::Vector3f::UnitZ();
+        const NeighbourhoodPlane plane = fit_plane(*cloud, plane_points);
+        // Discs face where the map was recorded from: up for an airborne survey, else its scanner.
+        const Eigen::Vector3f towards =
+            options.scanner_position_m
+                ? Eigen::Vector3f((*options.scanner_position_m - map.points_world[i]).normalized().cast<float>())
+                : Eigen::Vector3f::UnitZ();
+        if (!plane.normal) {
+            map.normals[i] = options.scanner_position_m ? facing_across(towards, plane.axis) : towards;
             ++rep.degenerate_normals;
+        } else if (options.scanner_position_m && std::abs(plane.normal->dot(towards)) < kScanLineCos) {
+            map.normals[i] = towards;
+            ++rep.scan_line_normals;
+        } else {
+            map.normals[i] = plane.normal->dot(towards) < 0.0f ? Eigen::Vector3f(-*plane.normal) : *plane.normal;
         }
         const double sum_d2 = static_cast<double>(squared_distances[1]) + squared_distances[2] +
                               squared_distances[3] + squared_distances[4];
@@ -263,7 +291,9 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
         rep.reflectance_from_intensity = true;
         map.reflectance.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            map.reflectance[i] = static_cast<float>(options.reflectance_at_max_intensity * intensity[i] / i_max);
+            map.reflectance[i] = static_cast<float>(
+                options.reflectance_per_intensity ? std::min(1.0, *options.reflectance_per_intensity * intensity[i])
+                                                  : options.reflectance_at_max_intensity * intensity[i] / i_max);
         }
     } else {
         if (!options.reflectance && !intensity.empty()) {
@@ -274,8 +304,12 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
 
     if (rep.nonfinite_dropped > 0) spdlog::warn("{}: dropped {} non-finite points", name, rep.nonfinite_dropped);
     if (rep.degenerate_normals > 0) {
-        spdlog::warn("{}: {} points have no plane of neighbours; their normals are set to +z", name,
-                     rep.degenerate_normals);
+        spdlog::warn("{}: {} points have no plane of neighbours; their normals are set to {}", name,
+                     rep.degenerate_normals, options.scanner_position_m ? "face the scanner" : "+z");
+    }
+    if (rep.scan_line_normals > 0) {
+        spdlog::info("{}: {} points lie on scan lines seen edge-on; their discs face the scanner", name,
+                     rep.scan_line_normals);
     }
     spdlog::info("{}: {} background points, median disc radius {:.3f} m", name, n, median);
     return map;

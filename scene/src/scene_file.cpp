@@ -221,13 +221,18 @@ BackgroundMap read_background(JsonFields& b, const fs::path& scenario_dir) {
     options.scale = b.number("scale", 1e-6, 1e6, 1.0);
     options.offset_m = b.vec3("offset_m", Eigen::Vector3d::Zero());
     options.normal_neighbours = static_cast<int>(b.integer("neighbours", 3, 64, options.normal_neighbours));
-    if (b.has("reflectance") && b.has("reflectance_at_max_intensity")) {
-        b.fail("reflectance_at_max_intensity", "give reflectance (one value for every point) or "
-                                               "reflectance_at_max_intensity (from the file's intensity), not both");
+    if (b.has("scanner_position_m")) options.scanner_position_m = b.vec3("scanner_position_m");
+    const int reflectance_keys = b.has("reflectance") + b.has("reflectance_at_max_intensity") + b.has("reflectance_per_intensity");
+    if (reflectance_keys > 1) {
+        b.fail(b.has("reflectance_per_intensity") ? "reflectance_per_intensity" : "reflectance_at_max_intensity",
+               "give one of reflectance (one value for every point), reflectance_at_max_intensity or "
+               "reflectance_per_intensity (both from the file's intensity)");
     }
     if (b.has("reflectance")) options.reflectance = b.number("reflectance", 0.0, 1.0);
     options.reflectance_at_max_intensity =
         b.number("reflectance_at_max_intensity", 0.0, 1.0, options.reflectance_at_max_intensity);
+    if (b.has("reflectance_per_intensity"))
+        options.reflectance_per_intensity = b.number("reflectance_per_intensity", 0.0, 1.0);
     b.reject_unknown_keys();
     try {
         return load_background_map(file, options);

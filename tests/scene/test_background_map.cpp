@@ -129,6 +129,60 @@ TEST_CASE("background_map: normals point up whichever way the fit returns them",
     }
 }
 
+TEST_CASE("background_map: a ground-based scan's rings give discs facing its scanner, not edge-on", "[background_map]") {
+    // A spinning scanner 1.6 m over flat ground: channels at -15, -13 and -11 deg sample it along
+    // rings 0.2 deg apart in azimuth, ranges with 1 cm of noise. Each point's nearest neighbours
+    // lie on its own ring, that is on the cone its channel swept, so their plane fit contains
+    // the lines of sight.
+    TempDir dir;
+    const Eigen::Vector3d scanner(0.0, 0.0, 1.6);
+    std::vector<PcdPoint> pts;
+    for (double el_deg : {-15.0, -13.0, -11.0}) {
+        const double el = el_deg * M_PI / 180.0;
+        for (int k = 0; k < 1800; ++k) {
+            const double az = 2.0 * M_PI * k / 1800.0;
+            const double range = -scanner.z() / std::sin(el) + 0.01 * std::sin(37.0 * k + el_deg);
+            const Eigen::Vector3d p = scanner + range * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+            pts.push_back({p.x(), p.y(), p.z()});
+        }
+    }
+    const fs::path file = write_pcd(dir.path / "rings.pcd", pts, false);
+    auto edge_on = [&](const BackgroundMap& map) {
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const Eigen::Vector3f view = (scanner - map.points_world[i]).normalized().cast<float>();
+            count += std::abs(map.normals[i].dot(view)) < 0.1f;
+        }
+        return count;
+    };
+    // Read as an airborne survey, most discs are edge-on to the beams that recorded them.
+    CHECK(edge_on(load_background_map(file, {})) > pts.size() / 2);
+
+    BackgroundOptions options;
+    options.scanner_position_m = scanner;
+    BackgroundLoadReport report;
+    const BackgroundMap map = load_background_map(file, options, &report);
+    CHECK(edge_on(map) == 0);
+    CHECK(report.scan_line_normals + report.degenerate_normals > pts.size() / 2);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+        REQUIRE(map.normals[i].dot((scanner - map.points_world[i]).normalized().cast<float>()) > 0.0f);
+}
+
+TEST_CASE("background_map: a scanner position leaves true surface normals alone, turned to face it", "[background_map]") {
+    // A tilted grid (a real two-dimensional neighbourhood) seen from a scanner below its plane:
+    // the analytic normal, flipped towards the scanner rather than up.
+    TempDir dir;
+    const double a = 0.3, b = -0.2;
+    const fs::path file = write_pcd(dir.path / "tilted.pcd", grid(12, 12, 0.5, 0.5, a, b, 0.0), false);
+    BackgroundOptions options;
+    options.scanner_position_m = Eigen::Vector3d(3.0, 3.0, -20.0);
+    BackgroundLoadReport report;
+    const BackgroundMap map = load_background_map(file, options, &report);
+    CHECK(report.scan_line_normals == 0);
+    const Eigen::Vector3f expected = -Eigen::Vector3f(static_cast<float>(-a), static_cast<float>(-b), 1.0f).normalized();
+    for (const auto& n : map.normals) CHECK((n - expected).norm() < 1e-4f);
+}
+
 TEST_CASE("background_map: points on a line have no plane; their normals are +z and counted", "[background_map]") {
     TempDir dir;
     std::vector<PcdPoint> line;
@@ -217,6 +271,13 @@ TEST_CASE("background_map: reflectance from intensity, from the option, or the d
         const BackgroundMap map = load_background_map(with_i, options);
         CHECK(map.reflectance[1] == Approx(0.5 * 50.0 / 200.0).epsilon(1e-6));
         CHECK(map.reflectance[3] == Approx(0.5).epsilon(1e-6));
+    }
+    SECTION("a calibrated reflectivity: rho = k I, at most 1") {
+        BackgroundOptions options;
+        options.reflectance_per_intensity = 0.01;  // Velodyne's byte: per cent, retro-reflectors above 100
+        const BackgroundMap map = load_background_map(with_i, options);
+        const std::vector<double> expected{0.0, 0.5, 1.0, 1.0, 0.25, 0.0, 1.0, 1.0, 0.8};
+        for (std::size_t i = 0; i < pts.size(); ++i) CHECK(map.reflectance[i] == Approx(expected[i]).epsilon(1e-6));
     }
     SECTION("a constant reflectance overrides the intensity") {
         BackgroundOptions options;

@@ -398,5 +398,13 @@ TEST_CASE("scene_file: the background map is placed and coloured as the scenario
     const InputError both =
         dir.error(R"({"background": {"file": "map.pcd", "reflectance": 0.2, "reflectance_at_max_intensity": 0.5}})");
     CHECK(both.field() == "background.reflectance_at_max_intensity");
+    const Scene calibrated = dir.read(R"({"background": {"file": "map.pcd", "reflectance_per_intensity": 0.004}})");
+    CHECK(calibrated.background->reflectance[2] == Approx(0.004 * 80.0));
+    CHECK(dir.error(R"({"background": {"file": "map.pcd", "reflectance_per_intensity": 0.01, "reflectance": 0.2}})").field() ==
+          "background.reflectance_per_intensity");
+    const Scene scanned = dir.read(R"({"background": {"file": "map.pcd", "scanner_position_m": [0.5, 0.5, 10]}})");
+    for (const auto& n : scanned.background->normals) CHECK((n - Eigen::Vector3f::UnitZ()).norm() < 1e-5f);
+    CHECK(dir.error(R"({"background": {"file": "map.pcd", "scanner_position_m": [0, 0]}})").field() ==
+          "background.scanner_position_m");
     CHECK(dir.error(R"({"background": {"file": "map.pcd", "neighbours": 2}})").field() == "background.neighbours");
 }

@@ -25,13 +25,24 @@ struct BackgroundOptions {
     /// estimates for the bright surfaces of an airborne scan (concrete, light roofing, grass);
     /// recorded intensity also carries range and incidence effects, so this is a rough map.
     double reflectance_at_max_intensity = 0.6;
+    /// When set, rho = min(1, reflectance_per_intensity * I) instead: for sensors whose intensity
+    /// is a calibrated reflectivity, e.g. 0.01 for Velodyne's byte (0-100 % diffuse, above 100
+    /// retro-reflectors).
+    std::optional<double> reflectance_per_intensity;
+    /// Where the scanner that recorded the map stood (world coordinates, after scale and offset),
+    /// for maps from a ground-based scanner: normals are turned to face it instead of up, and a
+    /// point whose plane fit the scanner would see edge-on (neighbours along one scan line, spread
+    /// only by range noise: an artefact of the sampling) gets a disc facing the scanner.
+    /// Unset: an airborne survey.
+    std::optional<Eigen::Vector3d> scanner_position_m;
 };
 
 /// What loading found, for the log and for tests.
 struct BackgroundLoadReport {
     std::size_t points_loaded = 0;
     std::size_t nonfinite_dropped = 0;     ///< points with a NaN/inf coordinate
-    std::size_t degenerate_normals = 0;    ///< neighbourhood not spanning a plane: normal set to +z
+    std::size_t degenerate_normals = 0;    ///< neighbourhood not spanning a plane: normal set to +z (or facing the scanner)
+    std::size_t scan_line_normals = 0;     ///< with a scanner position: fits seen edge-on from it, replaced
     std::size_t radii_clamped = 0;         ///< disc radii pulled into [0.25, 3] x the median radius
     bool reflectance_from_intensity = false;
 };
