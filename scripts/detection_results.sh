@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
 # Renders the paper's four datasets (if not rendered yet), runs every detector configuration on
-# them and prints mean L2, mean IoU and EAO as a markdown table (docs/detection_results.md).
-# Usage: scripts/detection_results.sh [OUT_ROOT]   (default out/)
+# them and prints mean L2, mean IoU and EAO as a markdown table (docs/detection_results_table.md).
+# Usage: scripts/detection_results.sh [OUT_ROOT] [SCENARIO ...]   (default out/; the four
+# datasets, and their Autzen variants where ../shared/data/autzen is present)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=${1:-out}
+shift || true
+names=("$@")
+if [ ${#names[@]} -eq 0 ]; then
+  names=(dataset1 dataset2 dataset3 dataset4)
+  [ -f ../shared/data/autzen/autzen_trim.pcd ] && names+=(dataset1-autzen dataset2-autzen dataset3-autzen dataset4-autzen)
+fi
 bin=./build/apps/ladarsim
 configs=(
   "rbnn-0.06|--method rbnn --radius 0.06"
@@ -15,9 +22,9 @@ configs=(
 )
 echo "| dataset | detector | mean L2 (m) | mean IoU | EAO | failures | frames lost |"
 echo "|---|---|---|---|---|---|---|"
-for n in 1 2 3 4; do
-  dir=$root/dataset$n
-  [ -f "$dir/manifest.json" ] || $bin render assets/scenarios/dataset$n.json --out "$dir" --quiet >/dev/null
+for n in "${names[@]}"; do
+  dir=$root/$n
+  [ -f "$dir/manifest.json" ] || $bin render "assets/scenarios/$n.json" --out "$dir" --quiet >/dev/null
   for config in "${configs[@]}"; do
     name=${config%%|*}
     # shellcheck disable=SC2086
@@ -27,6 +34,6 @@ for n in 1 2 3 4; do
 import json, sys
 e = json.load(open('$dir/eval-$name.json'))
 l2 = '-' if e['mean_l2_m'] is None else '%.3f' % e['mean_l2_m']
-print('| $n | $name | %s | %.3f | %.3f | %d | %d |' % (l2, e['mean_iou'], e['eao'], e['failures'], e['frames_lost']))"
+print('| ${n#dataset} | $name | %s | %.3f | %.3f | %d | %d |' % (l2, e['mean_iou'], e['eao'], e['failures'], e['frames_lost']))"
   done
 done
