@@ -129,6 +129,10 @@ struct TracedScene::Impl {
         // move with each new time window, not the static terrain or the background map.
         rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
         volumes.reset(rtcNewScene(device.get()));
+        // Watertight triangle tests: a ray slipping through an edge between two boundary
+        // triangles would miss its entry into a cloud, find only the exit, and count everything
+        // from the sensor on as inside. Volume boundaries are few, so the care costs little.
+        rtcSetSceneFlags(volumes.get(), RTC_SCENE_FLAG_ROBUST);
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
             add_bounds(object);
@@ -205,6 +209,7 @@ struct TracedScene::Impl {
     void add_volume(const scene::SceneObject& object) {
         float* vertices = nullptr;
         Geometry g = triangle_geometry(object.model->mesh, relative_from_model(object, 0.0), &vertices);
+        rtcSetGeometryIntersectFilterFunction(g.get(), &Impl::collect_crossing);
         rtcCommitGeometry(g.get());
         const unsigned id = rtcAttachGeometry(volumes.get(), g.get());
         if (id != volume_objects.size()) throw std::logic_error("Embree geometry ids are not sequential");
@@ -214,6 +219,26 @@ struct TracedScene::Impl {
     }
 
     std::vector<Geometry> volume_geometries;
+
+    // Every boundary a ray crosses, gathered in one traversal: the filter records each candidate
+    // hit and rejects it so that Embree goes on. (Stepping from hit to hit instead skips a second
+    // boundary at the same distance, e.g. where a ray grazes an edge, entering and leaving at once.)
+    struct Crossing {
+        std::uint32_t geometry;
+        std::uint32_t prim;
+    };
+    struct CrossingContext {
+        RTCIntersectContext context;  // first: Embree hands callbacks a pointer to it
+        std::vector<Crossing>* crossings;
+    };
+    static void collect_crossing(const RTCFilterFunctionNArguments* args) {
+        auto* context = reinterpret_cast<const CrossingContext*>(args->context);
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] != -1) continue;
+            context->crossings->push_back({RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i)});
+            args->valid[i] = 0;
+        }
+    }
 
     void add_moving_instance(const scene::SceneObject& object) {
         auto [it, inserted] = model_index.emplace(object.model.get(), models.size());
@@ -372,42 +397,66 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
     std::vector<VolumeSegment> segments;
     if (impl_->volume_objects.empty()) return segments;
     const Eigen::Vector3d o = ray.origin_world - impl_->origin_world;
-    struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
-    std::vector<Open> open;
+
+    std::vector<Impl::Crossing> crossings;
+    Impl::CrossingContext context;
+    rtcInitIntersectContext(&context.context);
+    context.crossings = &crossings;
+    RTCRayHit rh;
+    impl_->to_embree(ray, rh);
+    rtcIntersect1(impl_->volumes.get(), &context.context, &rh);
+
+    // Distances in double from the triangles themselves.
+    struct Boundary {
+        double range_m;
+        bool entering;
+        std::uint32_t geometry, prim;
+    };
+    std::vector<Boundary> boundaries;
+    for (const Impl::Crossing& c : crossings) {
+        const auto& tri = impl_->volume_objects[c.geometry]->model->mesh.triangles[c.prim];
+        const float* v = impl_->volume_vertices[c.geometry];
+        Eigen::Vector3d corner[3];
+        for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(v[3 * tri[k]], v[3 * tri[k] + 1], v[3 * tri[k] + 2]);
+        const auto range = triangle_distance(o, ray.direction, corner[0], corner[1], corner[2]);
+        if (!range) continue;  // degenerate triangle
+        const Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+        boundaries.push_back({std::max(*range, 0.0), normal.dot(ray.direction) < 0.0, c.geometry, c.prim});
+    }
+    std::sort(boundaries.begin(), boundaries.end(), [](const Boundary& a, const Boundary& b) { return a.range_m < b.range_m; });
+
     auto close = [&](std::uint32_t geometry, double enter_m, double exit_m, std::uint32_t prim) {
         const scene::SceneObject& object = *impl_->volume_objects[geometry];
         const scene::Material& m = object.model->materials[object.model->mesh.triangle_material[prim]];
         segments.push_back({object.id, enter_m, exit_m, m.extinction_per_m, m.backscatter_per_m_sr});
     };
-    double t = 0.0;
-    // Boundary by boundary: each crossing enters or leaves one volume.
-    for (int crossing = 0; crossing < 256; ++crossing) {
-        RTCRayHit rh;
-        impl_->to_embree(ray, rh);
-        rh.ray.tnear = static_cast<float>(t);
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        rtcIntersect1(impl_->volumes.get(), &context, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
-        const std::uint32_t g = rh.hit.geomID;
-        const auto& tri = impl_->volume_objects[g]->model->mesh.triangles[rh.hit.primID];
-        const float* v = impl_->volume_vertices[g];
-        Eigen::Vector3d corner[3];
-        for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(v[3 * tri[k]], v[3 * tri[k] + 1], v[3 * tri[k] + 2]);
-        const Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
-        const double range = triangle_distance(o, ray.direction, corner[0], corner[1], corner[2]).value_or(rh.ray.tfar);
-        const bool entering = normal.dot(ray.direction) < 0.0;
-        const auto it = std::find_if(open.begin(), open.end(), [&](const Open& x) { return x.geometry == g; });
-        if (entering) {
-            if (it == open.end()) open.push_back({g, range, rh.hit.primID});
+    struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
+    std::vector<Open> open;
+    std::vector<std::uint32_t> met;  // volumes whose boundary this ray has crossed already
+    std::vector<bool> consumed(boundaries.size(), false);
+    for (std::size_t i = 0; i < boundaries.size(); ++i) {
+        if (consumed[i]) continue;
+        const Boundary& b = boundaries[i];
+        const auto it = std::find_if(open.begin(), open.end(), [&](const Open& x) { return x.geometry == b.geometry; });
+        const bool first = std::find(met.begin(), met.end(), b.geometry) == met.end();
+        if (first) met.push_back(b.geometry);
+        if (b.entering) {
+            if (it == open.end()) open.push_back({b.geometry, b.range_m, b.prim});
         } else if (it != open.end()) {
-            close(g, it->enter_m, range, rh.hit.primID);
+            close(b.geometry, it->enter_m, b.range_m, b.prim);
             open.erase(it);
-        } else {
-            close(g, 0.0, range, rh.hit.primID);  // the ray started inside
+        } else if (first) {
+            // Leaving a volume never entered: the ray started inside, unless it only touches the
+            // volume along an edge, where its entry lies at the same distance (rounding may
+            // sort it just after the exit).
+            const double same = 1e-7 * (1.0 + b.range_m);
+            bool grazing = false;
+            for (std::size_t j = i + 1; j < boundaries.size() && boundaries[j].range_m - b.range_m <= same; ++j) {
+                if (boundaries[j].geometry == b.geometry && boundaries[j].entering) consumed[j] = grazing = true;
+            }
+            if (!grazing) close(b.geometry, 0.0, b.range_m, b.prim);
         }
-        // Step past this boundary by more than float resolution at its distance.
-        t = range + 1e-4 + 1e-6 * range;
+        // else: one exit reported by both triangles of an edge
     }
     for (const Open& x : open) close(x.geometry, x.enter_m, ray.max_range_m, x.prim);
     std::sort(segments.begin(), segments.end(), [](const VolumeSegment& a, const VolumeSegment& b) { return a.enter_m < b.enter_m; });

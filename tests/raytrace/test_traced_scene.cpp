@@ -256,4 +256,23 @@ TEST_CASE("volumes: where a ray runs inside fog, from outside and from inside", 
 
     // Missing the cube: nothing.
     CHECK(traced.volumes_along(ray_from({0, 0, 0}, {50.0, 20.0, 0})).empty());
+
+    // Through the edge two triangles of the near face share (its diagonal y = z) and through the
+    // cube's own edges: a boundary crossed there must still count as entering. A ray slipping
+    // between the two triangles would find only the exit and start "inside" at 0 m, filling the
+    // 45 m in front of the cloud with fog.
+    int crossings = 0;
+    for (int i = -400; i <= 400; ++i) {
+        const double s = 4.99 * i / 400.0;
+        for (const Eigen::Vector3d& target : {Eigen::Vector3d(45.0, s, s), Eigen::Vector3d(45.0, 5.0, s), Eigen::Vector3d(45.0, s, -5.0)}) {
+            const Ray edge = ray_from({0, 0, 0}, target);
+            const auto segments = traced.volumes_along(edge);
+            if (segments.empty()) continue;  // grazing the cube's outline: in or out are both honest
+            INFO("towards " << target.transpose() << ": " << segments[0].enter_m << " to " << segments[0].exit_m);
+            REQUIRE(segments.size() == 1);
+            ++crossings;
+            REQUIRE(segments[0].enter_m == Approx(plane_distance(edge, {45.0, 0, 0}, Eigen::Vector3d::UnitX())).margin(1e-3));
+        }
+    }
+    CHECK(crossings > 801);
 }

@@ -26,7 +26,7 @@ struct Seen {
 /// Renders `frames` of a scenario and counts the returns of the target (id 1), of its clutter
 /// (moving objects other than drones, clouds, and buildings that are not the modelled ground's)
 /// and of the recorded map; checks that the cue keeps the drone's box inside the field and that
-/// every return has a finite range.
+/// every return has a finite, positive range.
 Seen render_and_check(const Scenario& s, std::initializer_list<std::uint64_t> frames) {
     FrameRenderer renderer(s);
     std::set<std::uint32_t> clutter;
@@ -41,6 +41,7 @@ Seen render_and_check(const Scenario& s, std::initializer_list<std::uint64_t> fr
         const Frame f = renderer.render(k);
         for (const Return& r : f.returns) {
             REQUIRE(std::isfinite(r.range_m));
+            REQUIRE(r.range_m > 0.0);
             seen.target += r.object_id == 1;
             seen.clutter += clutter.count(r.object_id) > 0;
             seen.map += r.object_id == scene::kBackgroundObjectId;
