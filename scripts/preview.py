@@ -80,6 +80,13 @@ def main():
         whole.set_xlabel("azimuth (deg, left positive)")
         whole.set_ylabel("elevation (deg)")
         whole.invert_xaxis()
+        # The field (the beams' own angles), not every box: an aircraft passing beside the field
+        # would shrink it to a dot.
+        if len(points):
+            beam_az, beam_el = np.degrees(points["beam_az"].astype(float)), np.degrees(points["beam_el"].astype(float))
+            pad = 0.02 * max(np.ptp(beam_az), np.ptp(beam_el), 0.5)
+            whole.set_xlim(beam_az.max() + pad, beam_az.min() - pad)
+            whole.set_ylim(beam_el.min() - pad, beam_el.max() + pad)
         close_done = False
         for obj in frame["objects"]:
             if obj["class"] not in targets:

@@ -142,6 +142,7 @@ struct TracedScene::Impl {
         }
         if (scene.background && !scene.background->points_world.empty()) add_discs(*scene.background);
         rtcCommitScene(volumes.get());
+        find_volumes_holding_origin();
         check("building the scene");
         set_time_window(0.0, 0.0, 2);
     }
@@ -238,6 +239,57 @@ struct TracedScene::Impl {
             context->crossings->push_back({RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i)});
             args->valid[i] = 0;
         }
+    }
+
+    struct Boundary {
+        double range_m;  // in double, from the triangle itself
+        bool entering;
+        std::uint32_t geometry, prim;
+    };
+    /// The volume boundaries along a ray (origin relative to origin_world), nearest first.
+    std::vector<Boundary> boundaries_along(const Eigen::Vector3d& o, const Ray& ray) const {
+        std::vector<Crossing> crossings;
+        CrossingContext context;
+        rtcInitIntersectContext(&context.context);
+        context.crossings = &crossings;
+        RTCRayHit rh;
+        to_embree(ray, rh);
+        rtcIntersect1(volumes.get(), &context.context, &rh);
+        std::vector<Boundary> boundaries;
+        for (const Crossing& c : crossings) {
+            const auto& tri = volume_objects[c.geometry]->model->mesh.triangles[c.prim];
+            const float* v = volume_vertices[c.geometry];
+            Eigen::Vector3d corner[3];
+            for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(v[3 * tri[k]], v[3 * tri[k] + 1], v[3 * tri[k] + 2]);
+            const auto range = triangle_distance(o, ray.direction, corner[0], corner[1], corner[2]);
+            if (!range) continue;  // degenerate triangle
+            const Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+            boundaries.push_back({std::max(*range, 0.0), normal.dot(ray.direction) < 0.0, c.geometry, c.prim});
+        }
+        std::sort(boundaries.begin(), boundaries.end(), [](const Boundary& a, const Boundary& b) { return a.range_m < b.range_m; });
+        return boundaries;
+    }
+
+    // Whether the sensor (origin_world, where every beam starts) sits inside each volume, decided
+    // once by parity along three skew directions (a majority, in case one grazes an edge). Deciding
+    // it per ray from the order of its crossings fails on rays grazing a silhouette, where float
+    // vertices can sort the exit a few millimetres before the entry.
+    std::vector<bool> origin_inside;
+    void find_volumes_holding_origin() {
+        origin_inside.assign(volume_objects.size(), false);
+        if (volume_objects.empty()) return;
+        std::vector<int> votes(volume_objects.size(), 0);
+        for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.5377, 0.1834, 0.8229), Eigen::Vector3d(-0.3094, 0.9281, -0.2070),
+                                         Eigen::Vector3d(0.7071, -0.5000, -0.5000)}) {
+            Ray ray;
+            ray.origin_world = origin_world;
+            ray.direction = d.normalized();
+            ray.max_range_m = 1e7;
+            std::vector<int> parity(volume_objects.size(), 0);
+            for (const Boundary& b : boundaries_along(Eigen::Vector3d::Zero(), ray)) parity[b.geometry] ^= 1;
+            for (std::size_t g = 0; g < parity.size(); ++g) votes[g] += parity[g];
+        }
+        for (std::size_t g = 0; g < votes.size(); ++g) origin_inside[g] = votes[g] >= 2;
     }
 
     void add_moving_instance(const scene::SceneObject& object) {
@@ -397,34 +449,6 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
     std::vector<VolumeSegment> segments;
     if (impl_->volume_objects.empty()) return segments;
     const Eigen::Vector3d o = ray.origin_world - impl_->origin_world;
-
-    std::vector<Impl::Crossing> crossings;
-    Impl::CrossingContext context;
-    rtcInitIntersectContext(&context.context);
-    context.crossings = &crossings;
-    RTCRayHit rh;
-    impl_->to_embree(ray, rh);
-    rtcIntersect1(impl_->volumes.get(), &context.context, &rh);
-
-    // Distances in double from the triangles themselves.
-    struct Boundary {
-        double range_m;
-        bool entering;
-        std::uint32_t geometry, prim;
-    };
-    std::vector<Boundary> boundaries;
-    for (const Impl::Crossing& c : crossings) {
-        const auto& tri = impl_->volume_objects[c.geometry]->model->mesh.triangles[c.prim];
-        const float* v = impl_->volume_vertices[c.geometry];
-        Eigen::Vector3d corner[3];
-        for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(v[3 * tri[k]], v[3 * tri[k] + 1], v[3 * tri[k] + 2]);
-        const auto range = triangle_distance(o, ray.direction, corner[0], corner[1], corner[2]);
-        if (!range) continue;  // degenerate triangle
-        const Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
-        boundaries.push_back({std::max(*range, 0.0), normal.dot(ray.direction) < 0.0, c.geometry, c.prim});
-    }
-    std::sort(boundaries.begin(), boundaries.end(), [](const Boundary& a, const Boundary& b) { return a.range_m < b.range_m; });
-
     auto close = [&](std::uint32_t geometry, double enter_m, double exit_m, std::uint32_t prim) {
         const scene::SceneObject& object = *impl_->volume_objects[geometry];
         const scene::Material& m = object.model->materials[object.model->mesh.triangle_material[prim]];
@@ -432,11 +456,12 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
     };
     struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
     std::vector<Open> open;
+    const bool from_sensor = o.squaredNorm() < 1e-12;
+    const std::vector<Impl::Boundary> boundaries = impl_->boundaries_along(o, ray);
     std::vector<std::uint32_t> met;  // volumes whose boundary this ray has crossed already
-    std::vector<bool> consumed(boundaries.size(), false);
-    for (std::size_t i = 0; i < boundaries.size(); ++i) {
-        if (consumed[i]) continue;
-        const Boundary& b = boundaries[i];
+    for (std::uint32_t g = 0; g < impl_->volume_objects.size(); ++g)
+        if (from_sensor && impl_->origin_inside[g]) open.push_back({g, 0.0, 0});
+    for (const Impl::Boundary& b : boundaries) {
         const auto it = std::find_if(open.begin(), open.end(), [&](const Open& x) { return x.geometry == b.geometry; });
         const bool first = std::find(met.begin(), met.end(), b.geometry) == met.end();
         if (first) met.push_back(b.geometry);
@@ -445,18 +470,11 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
         } else if (it != open.end()) {
             close(b.geometry, it->enter_m, b.range_m, b.prim);
             open.erase(it);
-        } else if (first) {
-            // Leaving a volume never entered: the ray started inside, unless it only touches the
-            // volume along an edge, where its entry lies at the same distance (rounding may
-            // sort it just after the exit).
-            const double same = 1e-7 * (1.0 + b.range_m);
-            bool grazing = false;
-            for (std::size_t j = i + 1; j < boundaries.size() && boundaries[j].range_m - b.range_m <= same; ++j) {
-                if (boundaries[j].geometry == b.geometry && boundaries[j].entering) consumed[j] = grazing = true;
-            }
-            if (!grazing) close(b.geometry, 0.0, b.range_m, b.prim);
+        } else if (first && !from_sensor) {
+            close(b.geometry, 0.0, b.range_m, b.prim);  // a ray from elsewhere, starting inside
         }
-        // else: one exit reported by both triangles of an edge
+        // else: a grazing ray's exit sorted before its entry, or one exit reported by both
+        // triangles of an edge
     }
     for (const Open& x : open) close(x.geometry, x.enter_m, ray.max_range_m, x.prim);
     std::sort(segments.begin(), segments.end(), [](const VolumeSegment& a, const VolumeSegment& b) { return a.enter_m < b.enter_m; });

@@ -276,3 +276,41 @@ TEST_CASE("volumes: where a ray runs inside fog, from outside and from inside", 
     }
     CHECK(crossings > 801);
 }
+
+TEST_CASE("volumes: rays grazing a cloud's outline never start inside it; a sensor in fog does", "[traced_scene]") {
+    // An icosphere cloud of radius 10 m 1.4 km out (float vertices there are 0.1 mm apart) and
+    // rays from the sensor aimed at its outline, where entry and exit nearly coincide and rounding
+    // can order them either way: a segment may be short or absent, but never open at the sensor.
+    auto sphere = std::make_shared<scene::Model>(*icosphere(10.0, 3, 0.3));
+    sphere->materials = {scene::fog_medium("cloud", 50.0)};
+    scene::Scene scene;
+    const Eigen::Vector3d centre(1400.0, 37.0, -110.0);
+    scene.objects.push_back(object_at(3, sphere, fixed_at(centre.x(), centre.y(), centre.z()), scene::ObjectClass::cloud));
+    {
+        TracedScene traced(scene, Eigen::Vector3d::Zero());
+        const Eigen::Vector3d axis = centre.normalized();
+        const Eigen::Vector3d u = axis.cross(Eigen::Vector3d::UnitZ()).normalized(), v = axis.cross(u);
+        int cut = 0;
+        for (int k = 0; k < 20000; ++k) {
+            // Just inside the circumscribed outline, where the rays cross facets' edges obliquely.
+            const double a = 2.0 * M_PI * k / 20000.0, offset = 10.0 * (0.97 + 0.03 * std::fmod(k * 0.618034, 1.0));
+            const Ray r = ray_from(Eigen::Vector3d::Zero(), centre + offset * (std::cos(a) * u + std::sin(a) * v));
+            for (const auto& s : traced.volumes_along(r)) {
+                REQUIRE(s.enter_m > 1300.0);
+                REQUIRE(s.exit_m >= s.enter_m);
+                ++cut;
+            }
+        }
+        CHECK(cut > 1000);
+    }
+    // The same cloud with the sensor inside it: every direction starts in the fog.
+    TracedScene inside(scene, centre + Eigen::Vector3d(1.0, -2.0, 0.5));
+    for (const Eigen::Vector3d& d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0.3, -0.4, 0.866)}) {
+        const Ray r = ray_from(centre + Eigen::Vector3d(1.0, -2.0, 0.5), centre + Eigen::Vector3d(1.0, -2.0, 0.5) + d);
+        const auto segments = inside.volumes_along(r);
+        REQUIRE(segments.size() == 1);
+        CHECK(segments[0].enter_m == 0.0);
+        CHECK(segments[0].exit_m > 7.0);
+        CHECK(segments[0].exit_m < 12.5);
+    }
+}
