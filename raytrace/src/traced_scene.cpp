@@ -129,9 +129,8 @@ struct TracedScene::Impl {
         // move with each new time window, not the static terrain or the background map.
         rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
         volumes.reset(rtcNewScene(device.get()));
-        // Watertight triangle tests: a ray slipping through an edge between two boundary
-        // triangles would miss its entry into a cloud, find only the exit, and count everything
-        // from the sensor on as inside. Volume boundaries are few, so the care costs little.
+        // Watertight triangle tests: a ray must not slip through the edge between two boundary
+        // triangles and lose a crossing of a cloud. Volume boundaries are few: the care costs little.
         rtcSetSceneFlags(volumes.get(), RTC_SCENE_FLAG_ROBUST);
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
