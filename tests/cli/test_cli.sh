@@ -31,6 +31,8 @@ expect_error "$src/tests/cli/bad/duplicate_id.json" "objects[1].id"
 expect_error "$src/tests/cli/bad/missing_background.json" "background.file"
 expect_error "$src/tests/cli/bad/corrupt_map.json" "background.file: $src/tests/cli/bad/corrupt_map.pcd"
 expect_error "$src/tests/cli/bad/truncated_model.json" "objects[0].model: $src/tests/cli/bad/truncated.glb"
+expect_error "$src/tests/cli/bad/extends_missing.json" "extends: no such file"
+expect_error "$src/tests/cli/bad/extends_bad_removal.json" "objects[0].remove"
 
 # A good run: every file present, no temporaries left, frames identical with 1 and 2 threads.
 good="$src/tests/cli/small.json"
