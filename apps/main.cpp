@@ -165,6 +165,9 @@ int main(int argc, char** argv) {
     bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about a minute)");
     bench_cmd->add_option("--json", bench_json, "Write every figure to this JSON file");
     bench_cmd->add_option("--scenario", bench_options.scenario, "Scenario to time")->check(CLI::ExistingFile)->capture_default_str();
+    bench_cmd->add_option("--map-scenario", bench_options.map_scenario,
+                          "Scenario over a recorded map, for speed against error there (skipped if it cannot load)")
+        ->capture_default_str();
 
     CLI11_PARSE(app, argc, argv);
     spdlog::set_pattern("%^%l%$: %v");
@@ -229,6 +232,19 @@ int main(int argc, char** argv) {
             std::printf("real-time factor (default accuracy, vs %.0f beams/s): %.1f\n", bench::sensor_beams_per_second(),
                         result["realtime_factor"].get<double>());
             std::printf("target point-count error vs converged reference: %+.2f %%\n", result["count_error_pct"].get<double>());
+            const nlohmann::json& map = result["recorded_map"];
+            if (map.contains("skipped")) {
+                std::printf("over a recorded map: skipped (%s)\n", map["skipped"].get<std::string>().c_str());
+            } else {
+                for (const nlohmann::json& m : map["settings"]) {
+                    if (m["footprint_samples"] != 0) continue;
+                    std::printf("over a recorded map, tolerance %.2f: %.0f rays/beam, real-time factor %.1f, map returns %+.1f %%, "
+                                "map intensity %+.1f %%\n",
+                                m["footprint_tolerance"].get<double>(), m["rays_per_beam"].get<double>(),
+                                m["realtime_factor"].get<double>(), m["map_count_error_pct"].get<double>(),
+                                m["map_energy_error_pct"].get<double>());
+                }
+            }
             if (!bench_json.empty()) {
                 sensor_model::write_json(bench_json, result);
                 std::printf("wrote %s\n", bench_json.c_str());

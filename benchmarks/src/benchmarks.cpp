@@ -25,6 +25,25 @@ std::vector<std::uint64_t> every(std::uint64_t step, std::uint64_t count) {
     return v;
 }
 
+/// One footprint integration: `samples` > 0 fixed sub-rays per beam, else adaptive at `tolerance`.
+struct Setting {
+    int samples;
+    double tolerance;
+    std::string label() const { return samples ? std::to_string(samples) + " sub-rays" : "tolerance " + std::to_string(tolerance); }
+};
+
+/// The settings the real-time and recorded-map benchmarks sweep.
+const std::vector<Setting> kSweep = {{0, 0.2}, {0, 0.05}, {0, 0.01}, {16, 0.0}, {64, 0.0}};
+
+/// A setting's speed: the fields every benchmark row starts with.
+json speed(const Setting& s, const Rendering& r) {
+    return {{"footprint_samples", s.samples},
+            {"footprint_tolerance", s.tolerance},
+            {"beams_per_s", r.beams_per_second()},
+            {"rays_per_beam", r.rays_per_beam()},
+            {"realtime_factor", r.beams_per_second() / sensor_beams_per_second()}};
+}
+
 /// Our render of one frame against Embree's traversal alone of the very rays it traced, in the
 /// same batches on the same scene, on one thread each (a ratio of work, not of scheduling).
 json pipeline_against_raw(const Scenario& scenario, std::uint64_t frame) {
@@ -70,11 +89,8 @@ json realtime(const Scenario& scenario, const BenchOptions& options) {
     const Rendering reference = render_frames(reference_scenario, checked);
 
     json settings = json::array();
-    struct Setting { int samples; double tolerance; };
-    std::vector<Setting> sweep = {{0, 0.2}, {0, 0.05}, {0, 0.01}, {16, 0.0}, {64, 0.0}};
-    for (const Setting& s : sweep) {
-        const std::string label = s.samples ? std::to_string(s.samples) + " sub-rays" : "tolerance " + std::to_string(s.tolerance);
-        options.progress("real time: " + label);
+    for (const Setting& s : kSweep) {
+        options.progress("real time: " + s.label());
         const Scenario timed_scenario = with_footprint(scenario, s.samples, s.tolerance);
         const Rendering timed = render_frames(timed_scenario, indices);
         const Scenario checked_scenario = with_footprint(quiet, s.samples, s.tolerance);
@@ -83,17 +99,14 @@ json realtime(const Scenario& scenario, const BenchOptions& options) {
         std::uint64_t all = 0, all_reference = 0;
         for (const auto& f : counted.frames) all += f.returns.size();
         for (const auto& f : reference.frames) all_reference += f.returns.size();
-        settings.push_back({{"footprint_samples", s.samples},
-                            {"footprint_tolerance", s.tolerance},
-                            {"beams_per_s", timed.beams_per_second()},
-                            {"rays_per_beam", timed.rays_per_beam()},
-                            {"realtime_factor", timed.beams_per_second() / sensor_beams_per_second()},
-                            {"target_returns", e.returns},
-                            {"reference_target_returns", e.reference_returns},
-                            {"count_error_pct", e.count_error_pct},
-                            {"energy_error_pct", e.energy_error_pct},
-                            {"range_error_mm", e.range_error_mm},
-                            {"all_returns_error_pct", 100.0 * (double(all) - double(all_reference)) / double(all_reference)}});
+        json row = speed(s, timed);
+        row.update({{"target_returns", e.returns},
+                    {"reference_target_returns", e.reference_returns},
+                    {"count_error_pct", e.count_error_pct},
+                    {"energy_error_pct", e.energy_error_pct},
+                    {"range_error_mm", e.range_error_mm},
+                    {"all_returns_error_pct", 100.0 * (double(all) - double(all_reference)) / double(all_reference)}});
+        settings.push_back(row);
     }
     return {{"scenario", scenario.file.string()},
             {"frames_timed", indices.size()},
@@ -123,7 +136,6 @@ json accuracy(const Scenario& scenario, const BenchOptions& options) {
         const Scenario reference_scenario = with_footprint(held, kReferenceSamples, 0.0);
         const Rendering reference = render_frames(reference_scenario, indices);
         json points = json::array();
-        struct Setting { int samples; double tolerance; };
         for (const Setting s : {Setting{0, 0.3}, Setting{0, 0.1}, Setting{0, 0.05}, Setting{0, 0.02}, Setting{0, 0.01},
                                 Setting{1, 0}, Setting{4, 0}, Setting{16, 0}, Setting{64, 0}, Setting{256, 0},
                                 Setting{1024, 0}}) {
@@ -146,6 +158,44 @@ json accuracy(const Scenario& scenario, const BenchOptions& options) {
     return {{"reference_samples", kReferenceSamples}, {"curves", curves}};
 }
 
+/// Frames over a recorded map at each accuracy setting: beams/s and rays per beam against the
+/// errors of the map's returns (count, summed intensity, range) and of the target's, all against
+/// the converged reference, noise off.
+json recorded_map(const BenchOptions& options) {
+    Scenario scenario;
+    try {
+        scenario = sensor_model::load_scenario(options.map_scenario);
+    } catch (const std::exception& e) {
+        return {{"scenario", options.map_scenario.string()}, {"skipped", e.what()}};
+    }
+    scenario.render.noise = false;
+    const std::uint64_t frames = static_cast<std::uint64_t>(scenario.render.frames);
+    const std::vector<std::uint64_t> indices = every(frames / (options.quick ? 2 : 6), frames);
+    options.progress("recorded map: converged reference (" + std::to_string(kReferenceSamples) + " sub-rays per beam, " +
+                     std::to_string(indices.size()) + " frames)");
+    const Rendering reference = render_frames(with_footprint(scenario, kReferenceSamples, 0.0), indices);
+    json settings = json::array();
+    for (const Setting& s : kSweep) {
+        options.progress("recorded map: " + s.label());
+        const Rendering r = render_frames(with_footprint(scenario, s.samples, s.tolerance), indices);
+        const ObjectError map = compare(r, reference, scene::kBackgroundObjectId);
+        const ObjectError target = compare(r, reference, scenario.mount.cue_object_id);
+        json row = speed(s, r);
+        row.update({{"map_returns", map.returns},
+                    {"reference_map_returns", map.reference_returns},
+                    {"map_count_error_pct", map.count_error_pct},
+                    {"map_energy_error_pct", map.energy_error_pct},
+                    {"map_range_error_mm", map.range_error_mm},
+                    {"target_count_error_pct", target.count_error_pct},
+                    {"target_energy_error_pct", target.energy_error_pct}});
+        settings.push_back(row);
+    }
+    return {{"scenario", options.map_scenario.string()},
+            {"frames", indices.size()},
+            {"reference_samples", kReferenceSamples},
+            {"settings", settings}};
+}
+
 }  // namespace
 
 double sensor_beams_per_second() { return sensor_model::sensor_preset("paper_ladar").beams_per_second(); }
@@ -157,6 +207,7 @@ nlohmann::json run_benchmarks(const BenchOptions& options) {
     result["pipeline"] = pipeline_against_raw(scenario, static_cast<std::uint64_t>(scenario.render.frames / 2));
     result["realtime"] = realtime(scenario, options);
     result["accuracy"] = accuracy(scenario, options);
+    result["recorded_map"] = recorded_map(options);
     result["scaling"] = scaling(scenario, options);
     result["pipeline_vs_raw_embree"] = result["pipeline"]["pipeline_vs_raw_embree"];
     // The shipped accuracy: the scenario's own footprint setting is the adaptive default.

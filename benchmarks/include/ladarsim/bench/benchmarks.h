@@ -11,12 +11,16 @@ namespace ladarsim::bench {
 
 struct BenchOptions {
     std::filesystem::path scenario = "assets/scenarios/default.json";
+    /// A scenario over a recorded map, for speed against error there (skipped, with the reason,
+    /// when it cannot be loaded, e.g. without ../shared/data).
+    std::filesystem::path map_scenario = "assets/scenarios/dataset2-autzen.json";
     bool quick = false;  ///< fewer frames and sizes: about a minute
     std::function<void(const std::string&)> progress = [](const std::string&) {};
 };
 
 /// Runs every benchmark and returns their figures. Top-level keys: pipeline_vs_raw_embree,
-/// realtime_factor, count_error_pct, and the details under pipeline, realtime, accuracy, scaling.
+/// realtime_factor, count_error_pct, and the details under pipeline, realtime, accuracy,
+/// recorded_map, scaling.
 nlohmann::json run_benchmarks(const BenchOptions& options);
 
 /// The sensor's own beam rate the real-time factor is measured against: the paper's 150 x 20
