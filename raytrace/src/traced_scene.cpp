@@ -245,16 +245,18 @@ struct TracedScene::Impl {
         bool entering;
         std::uint32_t geometry, prim;
     };
-    /// The volume boundaries along a ray (origin relative to origin_world), nearest first.
-    std::vector<Boundary> boundaries_along(const Eigen::Vector3d& o, const Ray& ray) const {
-        std::vector<Crossing> crossings;
+    /// The volume boundaries along a ray (origin relative to origin_world), nearest first, into
+    /// `boundaries` (reused: this runs per sub-ray in beams that meet a medium).
+    void boundaries_along(const Eigen::Vector3d& o, const Ray& ray, std::vector<Boundary>& boundaries) const {
+        thread_local std::vector<Crossing> crossings;
+        crossings.clear();
         CrossingContext context;
         rtcInitIntersectContext(&context.context);
         context.crossings = &crossings;
         RTCRayHit rh;
         to_embree(ray, rh);
         rtcIntersect1(volumes.get(), &context.context, &rh);
-        std::vector<Boundary> boundaries;
+        boundaries.clear();
         for (const Crossing& c : crossings) {
             const auto& tri = volume_objects[c.geometry]->model->mesh.triangles[c.prim];
             const float* v = volume_vertices[c.geometry];
@@ -266,7 +268,6 @@ struct TracedScene::Impl {
             boundaries.push_back({std::max(*range, 0.0), normal.dot(ray.direction) < 0.0, c.geometry, c.prim});
         }
         std::sort(boundaries.begin(), boundaries.end(), [](const Boundary& a, const Boundary& b) { return a.range_m < b.range_m; });
-        return boundaries;
     }
 
     // Whether the sensor (origin_world, where every beam starts) sits inside each volume, decided
@@ -278,6 +279,7 @@ struct TracedScene::Impl {
         origin_inside.assign(volume_objects.size(), false);
         if (volume_objects.empty()) return;
         std::vector<int> votes(volume_objects.size(), 0);
+        std::vector<Boundary> boundaries;
         for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.5377, 0.1834, 0.8229), Eigen::Vector3d(-0.3094, 0.9281, -0.2070),
                                          Eigen::Vector3d(0.7071, -0.5000, -0.5000)}) {
             Ray ray;
@@ -285,7 +287,8 @@ struct TracedScene::Impl {
             ray.direction = d.normalized();
             ray.max_range_m = 1e7;
             std::vector<int> parity(volume_objects.size(), 0);
-            for (const Boundary& b : boundaries_along(Eigen::Vector3d::Zero(), ray)) parity[b.geometry] ^= 1;
+            boundaries_along(Eigen::Vector3d::Zero(), ray, boundaries);
+            for (const Boundary& b : boundaries) parity[b.geometry] ^= 1;
             for (std::size_t g = 0; g < parity.size(); ++g) votes[g] += parity[g];
         }
         for (std::size_t g = 0; g < votes.size(); ++g) origin_inside[g] = votes[g] >= 2;
@@ -456,7 +459,8 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
     struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
     std::vector<Open> open;
     const bool from_sensor = o.squaredNorm() < 1e-12;
-    const std::vector<Impl::Boundary> boundaries = impl_->boundaries_along(o, ray);
+    thread_local std::vector<Impl::Boundary> boundaries;
+    impl_->boundaries_along(o, ray, boundaries);
     std::vector<std::uint32_t> met;  // volumes whose boundary this ray has crossed already
     for (std::uint32_t g = 0; g < impl_->volume_objects.size(); ++g)
         if (from_sensor && impl_->origin_inside[g]) open.push_back({g, 0.0, 0});

@@ -21,6 +21,7 @@ namespace {
 
 struct Seen {
     int target = 0, clutter = 0, map = 0;
+    std::size_t clutter_objects = 0;  ///< objects that count as clutter in the scenario
 };
 
 /// Renders `frames` of a scenario and counts the returns of the target (id 1), of its clutter
@@ -56,7 +57,7 @@ Seen render_and_check(const Scenario& s, std::initializer_list<std::uint64_t> fr
             CHECK(std::abs(el - f.gimbal_el_rad) < half_field);
         }
     }
-    if (clutter.empty()) seen.clutter = -1;
+    seen.clutter_objects = clutter.size();
     return seen;
 }
 
@@ -73,7 +74,7 @@ TEST_CASE("every shipped scenario renders with its drone in the field and its cl
     INFO(name);
     const Seen seen = render_and_check(load_scenario(kScenarios / (name + ".json")), {0, 1, 2});
     CHECK(seen.target > 0);
-    CHECK(seen.clutter != 0);
+    if (seen.clutter_objects > 0) CHECK(seen.clutter > 0);
 }
 
 TEST_CASE("the datasets' Autzen variants render with the recorded map behind the drone", "[scenarios]") {
