@@ -30,7 +30,7 @@
 #include "ladarsim/sensor_model/target_point_counts.h"
 #include "ladarsim/sensor_model/velodyne_pcap.h"
 #include "ladarsim/sensor_model/scenario.h"
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/sensor.h"
 
 namespace {
 
@@ -257,10 +257,8 @@ int main(int argc, char** argv) {
             // A 0.3 m square facing the sensor, the paper's abstraction of the drone.
             const auto plate = std::make_shared<scene::Model>(scene::make_plate(0.3, scene::kDefaultReflectance));
             const auto drone = std::make_shared<scene::Model>(scene::make_quadcopter());
-            sensor_model::SensorConfig sensor = sensor_model::sensor_preset("paper_ladar");
-            sensor.footprint_samples = table_samples;
             const nlohmann::json rows = sensor_model::table1_comparison(
-                sensor, plate, drone, table_frames, table1->count("--seed") ? seed : 1,
+                sensor_model::sensor_preset("paper_ladar"), table_samples, plate, drone, table_frames, table1->count("--seed") ? seed : 1,
                 [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
             const std::string markdown = sensor_model::table1_markdown(rows);
             std::cout << markdown;

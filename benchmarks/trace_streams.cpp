@@ -14,8 +14,7 @@
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/footprint.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/sensor.h"
 
 using namespace ladarsim;
 using Clock = std::chrono::steady_clock;
@@ -41,9 +40,9 @@ scene::Scene benchmark_scene() {
 
 /// Rays of one frame, sub-ray by sub-ray, around a boresight `elevation_deg` above the horizon.
 std::vector<raytrace::Ray> frame_rays(double elevation_deg) {
-    const sensor_model::SensorConfig config = sensor_model::sensor_preset("paper_ladar");
-    const sensor_model::GalvoRaster raster(config);
-    const sensor_model::Footprint footprint(config.divergence_mrad * 1e-3, 16, 1.5);
+    const sensor_model::Sensor sensor = sensor_model::sensor_preset("paper_ladar");
+    const sensor_model::ScanPattern& raster = *sensor.scan;
+    const sensor_model::Footprint footprint(sensor.transmitter.divergence_mrad * 1e-3, 16, 1.5);
     std::vector<sensor_model::SubRay> sub(16);
     footprint.fixed(sub);
     std::vector<raytrace::Ray> rays;

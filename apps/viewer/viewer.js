@@ -154,7 +154,7 @@ async function main() {
 
     // The field of view (green): the raster's four corner beams and its far edge.
     const reach = targetBox ? 1.2 * Math.hypot(...targetBox.box_sensor.centre_m) : 300;
-    const az = (manifest.sensor.field_az_deg * Math.PI) / 360, el = (manifest.sensor.field_el_deg * Math.PI) / 360;
+    const az = (manifest.sensor.derived.field_az_deg * Math.PI) / 360, el = (manifest.sensor.derived.field_el_deg * Math.PI) / 360;
     const corners = [[az, el], [-az, el], [-az, -el], [az, -el]].map(([a, e]) =>
       rasterDirection(info.gimbal_az_rad ?? 0, info.gimbal_el_rad ?? 0, a, e).multiplyScalar(reach));
     const fov = [];

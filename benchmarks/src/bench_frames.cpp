@@ -64,8 +64,8 @@ ObjectError compare(const Rendering& r, const Rendering& reference, std::uint32_
 }
 
 sensor_model::Scenario with_footprint(sensor_model::Scenario s, int samples, double tolerance) {
-    s.sensor.footprint_samples = samples;
-    s.sensor.footprint_tolerance = tolerance;
+    s.render.footprint_samples = samples;
+    s.render.footprint_tolerance = tolerance;
     return s;
 }
 

@@ -212,7 +212,7 @@ nlohmann::json run_benchmarks(const BenchOptions& options) {
     result["pipeline_vs_raw_embree"] = result["pipeline"]["pipeline_vs_raw_embree"];
     // The shipped accuracy: the scenario's own footprint setting is the adaptive default.
     for (const json& s : result["realtime"]["settings"]) {
-        if (s["footprint_samples"] == 0 && s["footprint_tolerance"] == scenario.sensor.footprint_tolerance) {
+        if (s["footprint_samples"] == 0 && s["footprint_tolerance"] == scenario.render.footprint_tolerance) {
             result["realtime_factor"] = s["realtime_factor"];
             result["count_error_pct"] = s["count_error_pct"];
         }

@@ -18,7 +18,7 @@ double threshold_to_noise_for(double false_alarm_rate_hz, double bandwidth_hz) {
     return std::sqrt(2.0 * std::log(ratio));
 }
 
-double solar_background_power_w(const SensorConfig& s, const Atmosphere& a) {
+double solar_background_power_w(const Optics& s, const Atmosphere& a) {
     if (!a.daylight) return 0.0;
     const double half_angle = 0.5e-3 * s.receiver_fov_mrad;
     const double solid_angle = 2.0 * std::numbers::pi * (1.0 - std::cos(half_angle));
@@ -42,7 +42,7 @@ double PulseShape::at(double t_s) const {
     return peak_per_joule() * std::exp(-0.5 * x * x);
 }
 
-ApdReceiver::ApdReceiver(const SensorConfig& s, double background_power_w)
+ApdReceiver::ApdReceiver(const Receiver& s, double background_power_w)
     : gain_(s.apd_gain),
       responsivity_(s.responsivity_a_per_w),
       excess_noise_(s.excess_noise_factor),

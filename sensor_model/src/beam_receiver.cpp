@@ -32,18 +32,18 @@ double total_energy(const std::vector<Echo>& echoes) {
 
 }  // namespace
 
-BeamReceiver::BeamReceiver(const SensorConfig& sensor, const Atmosphere& atmosphere, bool noise)
+BeamReceiver::BeamReceiver(const Sensor& sensor, const Atmosphere& atmosphere, bool noise)
     : sensor_(sensor),
       noise_(noise),
-      extinction_per_m_(atmosphere.extinction_per_m(sensor.wavelength_nm)),
-      apd_(sensor, solar_background_power_w(sensor, atmosphere)),
-      waveform_(apd_, sensor.pulse_width_ns * 1e-9),
-      unambiguous_range_m_(sensor.unambiguous_range_m()) {}
+      extinction_per_m_(atmosphere.extinction_per_m(sensor.transmitter.wavelength_nm)),
+      apd_(sensor.receiver, solar_background_power_w(sensor.optics, atmosphere)),
+      waveform_(apd_, sensor.transmitter.pulse_width_ns * 1e-9),
+      unambiguous_range_m_(sensor.transmitter.unambiguous_range_m()) {}
 
 double BeamReceiver::transmission(double range_m) const { return std::exp(-extinction_per_m_ * range_m); }
 
 void BeamReceiver::fold(DetectedReturn& r) const {
-    if (!sensor_.range_folding) return;
+    if (!sensor_.receiver.range_folding) return;
     const double periods = std::max(0.0, std::floor(r.range_m / unambiguous_range_m_));
     r.pulse_offset = static_cast<std::uint8_t>(std::min(periods, 255.0));
     r.range_m -= periods * unambiguous_range_m_;
@@ -53,7 +53,7 @@ DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSeque
     const auto [range, spread] = range_moments(surface.echoes);
     const double energy = total_energy(surface.echoes);
     // The echoes of one surface add up to one pulse, stretched by their spread in arrival time.
-    const PulseShape shape = PulseShape::of(sensor_.pulse_width_ns * 1e-9, 2.0 * spread / kSpeedOfLight_mps);
+    const PulseShape shape = PulseShape::of(sensor_.transmitter.pulse_width_ns * 1e-9, 2.0 * spread / kSpeedOfLight_mps);
     const double power = energy * shape.peak_per_joule();
     const double signal = apd_.amps_per_watt() * power;
     const double sigma = apd_.noise_a(power);
@@ -98,10 +98,10 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
         for (Echo& e : s.echoes) e.surface = i;
         if (!noise_ || s.source != ReturnSource::surface || s.echoes.empty()) continue;
         const double range = range_moments(s.echoes).first;
-        const double spot = range * std::sqrt(sensor_.divergence_mrad * sensor_.divergence_el_mrad) * 1e-3 *
+        const double spot = range * std::sqrt(sensor_.transmitter.divergence_mrad * sensor_.transmitter.divergence_el_mrad) * 1e-3 *
                             std::sqrt(std::max(s.weight, 1e-12));
         const double factor = speckle.gamma_unit_mean(
-            speckle_cells(sensor_.wavelength_nm * 1e-9, range, spot, sensor_.aperture_diameter_m));
+            speckle_cells(sensor_.transmitter.wavelength_nm * 1e-9, range, spot, sensor_.optics.aperture_diameter_m));
         for (Echo& e : s.echoes) e.energy_j *= factor;
     }
     std::erase_if(surfaces, [](const BeamSurface& s) { return s.echoes.empty(); });
@@ -124,7 +124,7 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
         std::vector<Echo> echoes;
         for (const BeamSurface& s : surfaces)
             for (Echo e : s.echoes) {
-                if (sensor_.range_folding) e.range_m = std::fmod(e.range_m, unambiguous_range_m_);
+                if (sensor_.receiver.range_folding) e.range_m = std::fmod(e.range_m, unambiguous_range_m_);
                 echoes.push_back(e);
             }
         RandomSequence waveform_noise(key.seed, RandomStream::waveform_noise, key.frame, key.beam);
@@ -142,7 +142,7 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
                 r.object_id = s.object_id;
                 r.source = s.source;
                 const double true_range = range_moments(s.echoes).first;
-                if (sensor_.range_folding)
+                if (sensor_.receiver.range_folding)
                     r.pulse_offset = static_cast<std::uint8_t>(std::min(std::floor(true_range / unambiguous_range_m_), 255.0));
             }
             returns.push_back(r);
@@ -153,7 +153,7 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
               [](const DetectedReturn& a, const DetectedReturn& b) { return a.range_m < b.range_m; });
 
     if (returns.size() > 1) {
-        switch (sensor_.reported_returns) {
+        switch (sensor_.receiver.reported_returns) {
             case ReportedReturns::all: break;
             case ReportedReturns::first: returns.resize(1); break;
             case ReportedReturns::last: returns.erase(returns.begin(), returns.end() - 1); break;

@@ -16,6 +16,7 @@
 #include "ladarsim/sensor_model/ground_truth_file.h"
 #include "ladarsim/sensor_model/json_file.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/galvo_raster.h"
 
 namespace ladarsim::sensor_model {
 
@@ -37,7 +38,11 @@ nlohmann::json render_json(const RenderSettings& r) {
             {"seed", r.seed},
             {"start_time_s", r.start_time_s},
             {"motion_steps", r.motion_steps},
-            {"jitter", r.jitter}};
+            {"jitter", r.jitter},
+            {"noise", r.noise},
+            {"footprint_samples", r.footprint_samples},
+            {"footprint_tolerance", r.footprint_tolerance},
+            {"footprint_truncation", r.footprint_truncation}};
 }
 
 /// The output directory as an absolute path without a trailing separator, checked before any
@@ -83,19 +88,26 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
         az_lo = std::min(az_lo, p.az_rad), az_hi = std::max(az_hi, p.az_rad);
         el_lo = std::min(el_lo, p.el_rad), el_hi = std::max(el_hi, p.el_rad);
     }
-    SensorConfig& c = survey.sensor;
-    const double pitch_az = c.field_az_deg * kDeg / c.beams_az, pitch_el = c.field_el_deg * kDeg / c.beams_el;
+    const ScanPattern& scan = *scenario.sensor.scan;
+    const double pitch_az = scan.field_az_deg() * kDeg / scan.columns(), pitch_el = scan.field_el_deg() * kDeg / scan.rows();
     // The field swept by the gimbal, plus a tenth of the field on each side.
-    const double field_az = std::min(2.0 * std::numbers::pi, az_hi - az_lo + 1.2 * c.field_az_deg * kDeg);
-    const double field_el = std::min(std::numbers::pi, el_hi - el_lo + 1.2 * c.field_el_deg * kDeg);
+    const double field_az = std::min(2.0 * std::numbers::pi, az_hi - az_lo + 1.2 * scan.field_az_deg() * kDeg);
+    const double field_el = std::min(std::numbers::pi, el_hi - el_lo + 1.2 * scan.field_el_deg() * kDeg);
     // Half the sensor's pitch, coarsened if needed to stay within four million survey beams.
     const double coarsen = std::max(1.0, std::sqrt(field_az / (0.5 * pitch_az) * field_el / (0.5 * pitch_el) / 4e6));
-    c.scan = ScanPattern::galvo;
-    c.field_az_deg = field_az / kDeg;
-    c.field_el_deg = field_el / kDeg;
-    c.beams_az = static_cast<int>(std::ceil(field_az / (0.5 * pitch_az * coarsen)));
-    c.beams_el = static_cast<int>(std::ceil(field_el / (0.5 * pitch_el * coarsen)));
-    c.footprint_samples = 1;
+    // Surveyed as by a galvo raster; a sensor without one is timed as a 1 kHz sawtooth (a static
+    // scene's survey times carry no information).
+    const auto* galvo = dynamic_cast<const GalvoRaster*>(&scan);
+    GalvoRaster::Parameters raster;
+    raster.field_az_deg = field_az / kDeg;
+    raster.field_el_deg = field_el / kDeg;
+    raster.beams_az = static_cast<int>(std::ceil(field_az / (0.5 * pitch_az * coarsen)));
+    raster.beams_el = static_cast<int>(std::ceil(field_el / (0.5 * pitch_el * coarsen)));
+    raster.galvo_rate_hz = galvo ? galvo->parameters().galvo_rate_hz : 1000.0;
+    raster.sweep = galvo ? galvo->parameters().sweep : GalvoSweep::sawtooth;
+    raster.frame_rate_hz = scan.frame_rate_hz();
+    survey.sensor.scan = std::make_shared<GalvoRaster>(raster);
+    survey.render.footprint_samples = 1;
     FrameRenderer renderer(survey);
     Frame map = renderer.render_at(0, GimbalPointing{0.5 * (az_lo + az_hi), 0.5 * (el_lo + el_hi)});
     write_frame_pcd(file, map);

@@ -89,15 +89,15 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
     : scenario_(scenario),
       traced_(traced),
       receiver_(receiver),
-      adaptive_(scenario.sensor.footprint_samples == 0),
-      tolerance_(scenario.sensor.footprint_tolerance),
+      adaptive_(scenario.render.footprint_samples == 0),
+      tolerance_(scenario.render.footprint_tolerance),
       floor_energy_j_(receiver.apd().threshold_a() /
                       (receiver.apd().amps_per_watt() * receiver.waveform().pulse().peak_per_joule())),
-      ellipticity_(scenario.sensor.divergence_el_mrad / scenario.sensor.divergence_mrad),
+      ellipticity_(scenario.sensor.transmitter.divergence_el_mrad / scenario.sensor.transmitter.divergence_mrad),
       small_object_rad_(0.0),
-      aperture_radius2_(scenario.sensor.aperture_area_m2() / std::numbers::pi),
-      footprint_(scenario.sensor.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.sensor.footprint_samples,
-                 scenario.sensor.footprint_truncation) {
+      aperture_radius2_(scenario.sensor.optics.aperture_area_m2() / std::numbers::pi),
+      footprint_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.render.footprint_samples,
+                 scenario.render.footprint_truncation) {
     small_object_rad_ = kSmallObjectFootprints * footprint_.max_offset_rad();
     if (!adaptive_) return;
     std::vector<SubRay> nodes(kQuadrature);
@@ -130,8 +130,8 @@ double FootprintIntegrator::echo_energy_j(double weight, double reflectance, dou
                                           double fog) const {
     const auto& sensor = scenario_.sensor;
     const double t = receiver_.transmission(range_m);
-    return lambertian_echo_energy_j(sensor.pulse_energy_j(), weight, sensor.optics_efficiency, t * t * fog, reflectance,
-                                    cos_incidence, sensor.aperture_area_m2(), range_m);
+    return lambertian_echo_energy_j(sensor.transmitter.pulse_energy_j(), weight, sensor.optics.optics_efficiency, t * t * fog,
+                                    reflectance, cos_incidence, sensor.optics.aperture_area_m2(), range_m);
 }
 
 void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame,
@@ -284,7 +284,7 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
         rays[i].origin_world = scenario_.mount.position_world;
         rays[i].direction = aim.world_from_beam * in_beam(sub_rays[i].offset_x_rad, sub_rays[i].offset_y_rad);
         rays[i].time_s = aim.time_s;
-        rays[i].max_range_m = sensor.max_range_m;
+        rays[i].max_range_m = sensor.receiver.max_range_m;
     }
     traced_.trace(rays, hits);
     out.rays += static_cast<int>(sub_rays.size());
@@ -296,9 +296,9 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
         double fog = 1.0;
         if (media) {
             const std::vector<raytrace::VolumeSegment> volumes = traced_.volumes_along(rays[i]);
-            add_volume_echoes(volumes, hits[i] ? hits[i]->range_m : sensor.max_range_m,
-                              sensor.pulse_energy_j() * weight * sensor.optics_efficiency, weight,
-                              sensor.aperture_area_m2(), receiver_, volume_draws, out.volume);
+            add_volume_echoes(volumes, hits[i] ? hits[i]->range_m : sensor.receiver.max_range_m,
+                              sensor.transmitter.pulse_energy_j() * weight * sensor.optics.optics_efficiency, weight,
+                              sensor.optics.aperture_area_m2(), receiver_, volume_draws, out.volume);
             if (hits[i]) fog = std::exp(-2.0 * optical_depth(volumes, hits[i]->range_m));
         }
         if (!hits[i]) continue;
@@ -354,7 +354,7 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
         const Probe& p = *used[k];
         const raytrace::Hit& h = **p.hit;
         const Eigen::Vector3d point = origin + h.range_m * p.direction_world;
-        if (std::abs(normal.dot(point - centroid)) > scenario_.sensor.return_gap_m) return Patch::mixed;
+        if (std::abs(normal.dot(point - centroid)) > scenario_.sensor.receiver.return_gap_m) return Patch::mixed;
         const double nd = normal.dot(p.direction_world);
         if (std::abs(nd) < 1e-9) return Patch::mixed;
         const double model_range = plane_distance / nd;
@@ -380,7 +380,7 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
         const Eigen::Vector3d d = aim.world_from_beam * quadrature_in_beam_[k];
         const double nd = normal.dot(d);
         const double range = plane_distance / nd;
-        if (!(range > 0.0) || range > scenario_.sensor.max_range_m) return Patch::mixed;
+        if (!(range > 0.0) || range > scenario_.sensor.receiver.max_range_m) return Patch::mixed;
         // Clear-air transmission is applied below at the patch's mean range: across a footprint
         // it changes by exp(-2 alpha dR), a fraction of a percent even at grazing incidence.
         const double e = std::abs(nd) / (range * range + aperture_radius2_);

@@ -34,17 +34,17 @@ Eigen::Vector3d object_centre_world(const scene::SceneObject& object, double tim
 FrameRenderer::FrameRenderer(const Scenario& scenario)
     : scenario_(scenario),
       traced_(scenario.scene, scenario.mount.position_world),
-      raster_(scenario.sensor),
+      raster_(*scenario.sensor.scan),
       receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise),
       integrator_(scenario, traced_, receiver_) {
     if (integrator_.adaptive()) find_neighbours();
 }
 
 void FrameRenderer::find_neighbours() {
-    const SensorConfig& sensor = scenario_.sensor;
-    const double ellipticity = sensor.divergence_el_mrad / sensor.divergence_mrad;
-    const double column_pitch = sensor.field_az_deg * std::numbers::pi / 180.0 / raster_.columns();
-    const double row_pitch = sensor.field_el_deg * std::numbers::pi / 180.0 / raster_.rows();
+    const Transmitter& transmitter = scenario_.sensor.transmitter;
+    const double ellipticity = transmitter.divergence_el_mrad / transmitter.divergence_mrad;
+    const double column_pitch = raster_.pitch_az_rad();
+    const double row_pitch = raster_.pitch_el_rad();
     const double r_max = integrator_.footprint().max_offset_rad();
     // Neighbours whose axes fall inside the footprint (in footprint coordinates, elevation
     // divided by the ellipticity), thinned to about 8 per footprint radius and axis: a denser
@@ -84,7 +84,7 @@ void FrameRenderer::find_neighbours() {
 }
 
 double FrameRenderer::frame_start_s(std::uint64_t index) const {
-    return scenario_.render.start_time_s + static_cast<double>(index) / scenario_.sensor.frame_rate_hz;
+    return scenario_.render.start_time_s + static_cast<double>(index) / raster_.frame_rate_hz();
 }
 
 GimbalPointing FrameRenderer::cue_pointing(double time_s) const {
@@ -100,15 +100,15 @@ GimbalPointing FrameRenderer::cue_pointing(double time_s) const {
 GimbalPointing FrameRenderer::gimbal_pointing(std::uint64_t index) {
     const bool cued = scenario_.mount.cue_object_id != 0;
     if (pointing_by_frame_.empty()) {
-        Gimbal g(scenario_.sensor, initial_pointing(scenario_.mount, cue_pointing(frame_start_s(0)), cued));
+        Gimbal g(scenario_.sensor.gimbal, initial_pointing(scenario_.mount, cue_pointing(frame_start_s(0)), cued));
         pointing_by_frame_.push_back(g.pointing());
     }
     // The gimbal moves between frames, so frame k's pointing depends on every earlier frame:
     // replay from the last known frame (cheap: two angles per frame).
     while (pointing_by_frame_.size() <= index) {
         const std::uint64_t next = pointing_by_frame_.size();
-        Gimbal g(scenario_.sensor, pointing_by_frame_.back());
-        if (cued) g.slew_towards(cue_pointing(frame_start_s(next)), 1.0 / scenario_.sensor.frame_rate_hz);
+        Gimbal g(scenario_.sensor.gimbal, pointing_by_frame_.back());
+        if (cued) g.slew_towards(cue_pointing(frame_start_s(next)), 1.0 / raster_.frame_rate_hz());
         pointing_by_frame_.push_back(g.pointing());
     }
     return pointing_by_frame_[index];
@@ -140,7 +140,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
         r.origin_world = scenario_.mount.position_world;
         r.direction = direction;
         r.time_s = time_s;
-        r.max_range_m = scenario_.sensor.max_range_m;
+        r.max_range_m = scenario_.sensor.receiver.max_range_m;
         rays.push_back(r);
         slots.push_back(slot);
     };
@@ -165,7 +165,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
     const auto& sensor = scenario_.sensor;
     const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
-    const double photoelectrons_per_joule = sensor.responsivity_a_per_w / kElementaryCharge_c;
+    const double photoelectrons_per_joule = sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
     thread_local std::vector<Probe> probes;
     thread_local BeamEchoes echoes;
     std::vector<Return> returns;
@@ -191,7 +191,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
         }
         integrator_.integrate(a, probes, frame, echoes);
         rays += static_cast<std::uint64_t>(echoes.rays);
-        std::vector<BeamSurface> surfaces = gather_surfaces(echoes.surface, sensor.return_gap_m);
+        std::vector<BeamSurface> surfaces = gather_surfaces(echoes.surface, sensor.receiver.return_gap_m);
         for (BeamSurface& v : echoes.volume) surfaces.push_back(std::move(v));
 
         const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
@@ -255,7 +255,7 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     Frame frame;
     frame.index = index;
     frame.start_time_s = frame_start_s(index);
-    frame.end_time_s = frame.start_time_s + scenario_.sensor.frame_scan_duration_s();
+    frame.end_time_s = frame.start_time_s + raster_.frame_scan_duration_s();
     frame.columns = raster_.columns();
     frame.rows = raster_.rows();
     frame.gimbal_az_rad = pointing.az_rad;

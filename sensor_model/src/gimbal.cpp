@@ -13,11 +13,25 @@ double step_towards(double from, double to, double max_step) {
 }
 }  // namespace
 
-Gimbal::Gimbal(const SensorConfig& config, GimbalPointing start)
-    : az_limit_rad_(config.gimbal_az_limit_deg * kRad),
-      el_min_rad_(config.gimbal_el_min_deg * kRad),
-      el_max_rad_(config.gimbal_el_max_deg * kRad),
-      slew_rate_radps_(config.gimbal_slew_rate_dps * kRad),
+GimbalLimits GimbalLimits::read(JsonFields& g) {
+    GimbalLimits x;
+    x.az_limit_deg = g.number("az_limit_deg", 0.0, 180.0);
+    x.el_min_deg = g.number("el_min_deg", -90.0, 90.0);
+    x.el_max_deg = g.number("el_max_deg", -90.0, 90.0);
+    x.slew_rate_dps = g.number("slew_rate_dps", 0.0, 1e4);
+    if (x.el_min_deg > x.el_max_deg) g.fail("el_min_deg", "must not be above el_max_deg");
+    return x;
+}
+
+nlohmann::json GimbalLimits::to_json() const {
+    return {{"az_limit_deg", az_limit_deg}, {"el_min_deg", el_min_deg}, {"el_max_deg", el_max_deg}, {"slew_rate_dps", slew_rate_dps}};
+}
+
+Gimbal::Gimbal(const GimbalLimits& limits, GimbalPointing start)
+    : az_limit_rad_(limits.az_limit_deg * kRad),
+      el_min_rad_(limits.el_min_deg * kRad),
+      el_max_rad_(limits.el_max_deg * kRad),
+      slew_rate_radps_(limits.slew_rate_dps * kRad),
       pointing_(clamp(start)) {}
 
 GimbalPointing Gimbal::clamp(GimbalPointing target) const {

@@ -36,6 +36,9 @@ RenderSettings read_render(JsonFields& render) {
     r.motion_steps = static_cast<int>(render.integer("motion_steps", 2, 129, r.motion_steps));
     r.jitter = render.boolean("jitter", r.jitter);
     r.noise = render.boolean("noise", r.noise);
+    r.footprint_samples = static_cast<int>(render.integer("footprint_samples", 0, 4096, r.footprint_samples));
+    r.footprint_tolerance = render.number("footprint_tolerance", 1e-4, 1.0, r.footprint_tolerance);
+    r.footprint_truncation = render.number("footprint_truncation", 0.1, 4.0, r.footprint_truncation);
     render.reject_unknown_keys();
     return r;
 }
@@ -51,7 +54,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
     JsonFields top(s.source, name, "");
     {
         JsonFields sensor(top.object("sensor"), name, "sensor");
-        s.sensor = read_sensor_config(sensor);
+        s.sensor = read_scenario_sensor(sensor, file.parent_path());
         s.mount = read_mount(sensor);
         sensor.reject_unknown_keys();
     }

@@ -30,6 +30,8 @@ void rebase_paths(json& doc, const fs::path& from_dir, const fs::path& to_dir) {
             if (o.is_object() && o.contains("model")) rebase_path(o["model"], from_dir, to_dir);
     if (doc.contains("background") && doc["background"].is_object() && doc["background"].contains("file"))
         rebase_path(doc["background"]["file"], from_dir, to_dir);
+    if (doc.contains("sensor") && doc["sensor"].is_object() && doc["sensor"].contains("file"))
+        rebase_path(doc["sensor"]["file"], from_dir, to_dir);
 }
 
 std::optional<std::size_t> find_object(const json& objects, const json& change) {

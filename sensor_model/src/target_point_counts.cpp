@@ -40,10 +40,12 @@ const std::vector<PrintedTable1Row>& printed_table1() {
     return rows;
 }
 
-int rendered_point_count_at(const SensorConfig& sensor, std::shared_ptr<const scene::Model> target, double range_m,
-                            double az_rad, double el_rad, bool noise, std::uint64_t seed, std::uint64_t frame) {
+int rendered_point_count_at(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
+                            double range_m, double az_rad, double el_rad, bool noise, std::uint64_t seed,
+                            std::uint64_t frame) {
     Scenario s;
     s.sensor = sensor;
+    s.render.footprint_samples = footprint_samples;
     s.render.noise = noise;
     s.render.seed = seed;
     s.render.frames = 1;
@@ -64,15 +66,16 @@ int rendered_point_count_at(const SensorConfig& sensor, std::shared_ptr<const sc
         std::count_if(f.returns.begin(), f.returns.end(), [](const Return& r) { return r.object_id == 1; }));
 }
 
-CountStatistics rendered_point_count(const SensorConfig& sensor, std::shared_ptr<const scene::Model> target,
+CountStatistics rendered_point_count(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
                                      double range_m, int frames, bool noise, std::uint64_t seed) {
-    const double pitch_az = sensor.field_az_deg * kDeg / sensor.beams_az;
-    const double pitch_el = sensor.field_el_deg * kDeg / sensor.beams_el;
+    const ScanPattern& scan = *sensor.scan;
+    const double pitch_az = scan.field_az_deg() * kDeg / scan.columns();
+    const double pitch_el = scan.field_el_deg() * kDeg / scan.rows();
     CountStatistics stats;
     for (int f = 0; f < frames; ++f) {
         // The sub-beam offset of this frame, from its own counter-based draw.
         const auto u = uniform4(seed, RandomStream::footprint_jitter, static_cast<std::uint64_t>(f), 0xFFFFFFFFu, 0);
-        stats.per_frame.push_back(rendered_point_count_at(sensor, target, range_m, (u[0] - 0.5) * pitch_az,
+        stats.per_frame.push_back(rendered_point_count_at(sensor, footprint_samples, target, range_m, (u[0] - 0.5) * pitch_az,
                                                           (u[1] - 0.5) * pitch_el, noise, seed, static_cast<std::uint64_t>(f)));
     }
     if (frames > 0) {
@@ -89,18 +92,20 @@ CountStatistics rendered_point_count(const SensorConfig& sensor, std::shared_ptr
     return stats;
 }
 
-nlohmann::json table1_comparison(const SensorConfig& sensor, std::shared_ptr<const scene::Model> plate,
+nlohmann::json table1_comparison(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> plate,
                                  std::shared_ptr<const scene::Model> drone, int frames, std::uint64_t seed,
                                  const std::function<void(int, int)>& progress) {
     nlohmann::json rows = nlohmann::json::array();
     const auto& printed = printed_table1();
     const double target_m = 0.3;
+    const ScanPattern& scan = *sensor.scan;
     int done = 0;
     for (const PrintedTable1Row& paper : printed) {
         const double r = paper.range_m;
-        const AnalyticPointCount stated = paper_point_count(r, sensor.field_az_deg, target_m, sensor.beams_az, sensor.beams_el,
-                                                            sensor.divergence_mrad);
-        const AnalyticPointCount wide = paper_point_count(r, 0.65, target_m, sensor.beams_az, sensor.beams_el, sensor.divergence_mrad);
+        const AnalyticPointCount stated = paper_point_count(r, scan.field_az_deg(), target_m, scan.columns(), scan.rows(),
+                                                            sensor.transmitter.divergence_mrad);
+        const AnalyticPointCount wide =
+            paper_point_count(r, 0.65, target_m, scan.columns(), scan.rows(), sensor.transmitter.divergence_mrad);
         nlohmann::json row = {
             {"range_m", r},
             {"paper_fov_m", paper.fov_m},
@@ -125,7 +130,7 @@ nlohmann::json table1_comparison(const SensorConfig& sensor, std::shared_ptr<con
             {"rendered_plate", plate, true}, {"rendered_plate_noiseless", plate, false},
             {"rendered_drone", drone, true}, {"rendered_drone_noiseless", drone, false}};
         for (const auto& run : runs) {
-            const CountStatistics s = rendered_point_count(sensor, run.model, r, frames, run.noise, seed);
+            const CountStatistics s = rendered_point_count(sensor, footprint_samples, run.model, r, frames, run.noise, seed);
             const std::string n = run.name;
             row[n + "_mean"] = s.mean;
             row[n + "_stddev"] = s.stddev;

@@ -18,14 +18,14 @@ expect_error() {
 }
 
 expect_error "$src/tests/cli/bad/unknown_top_key.json" "framez"
-expect_error "$src/tests/cli/bad/unknown_sensor_key.json" "sensor.beams_azz"
-expect_error "$src/tests/cli/bad/zero_beams.json" "sensor.beams_az"
-expect_error "$src/tests/cli/bad/wide_field.json" "sensor.field_az_deg"
+expect_error "$src/tests/cli/bad/unknown_sensor_key.json" "sensor.scan.beams_azz"
+expect_error "$src/tests/cli/bad/zero_beams.json" "sensor.scan.beams_az"
+expect_error "$src/tests/cli/bad/wide_field.json" "sensor.scan.field_az_deg"
 expect_error "$src/tests/cli/bad/missing_model.json" "objects[0].model"
 expect_error "$src/tests/cli/bad/not_json.json" "not valid JSON"
 expect_error "$work/does_not_exist.json" "cannot open"
 expect_error "$src/tests/cli/bad/wrong_type.json" "render.frames"
-expect_error "$src/tests/cli/bad/negative_range.json" "sensor.max_range_m"
+expect_error "$src/tests/cli/bad/negative_range.json" "sensor.receiver.max_range_m"
 expect_error "$src/tests/cli/bad/nan_position.json" "not valid JSON"
 expect_error "$src/tests/cli/bad/duplicate_id.json" "objects[1].id"
 expect_error "$src/tests/cli/bad/missing_background.json" "background.file"

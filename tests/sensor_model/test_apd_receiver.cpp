@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "ladarsim/sensor_model/apd_receiver.h"
+#include "ladarsim/sensor_model/sensor.h"
 #include "ladarsim/sensor_model/waveform.h"
 
 using namespace ladarsim::sensor_model;
 
 TEST_CASE("noise current adds shot, dark and thermal variances", "[apd_receiver]") {
-    SensorConfig c;
-    const ApdReceiver apd(c, 0.0);
+    Sensor c = sensor_preset("paper_ladar");
+    const ApdReceiver apd(c.receiver, 0.0);
     // By hand with q = 1.602e-19 C, k = 1.381e-23 J/K:
     //   thermal: 4 k T B / R_L = 4 * 1.381e-23 * 300 * 5e8 / 5000 = 1.6568e-15 A^2
     //   dark:    2 q B M^2 F I_d = 2 * 1.602e-19 * 5e8 * 100 * 5.5 * 5e-9 = 4.4060e-16 A^2
@@ -30,8 +31,8 @@ TEST_CASE("band-limited noise crosses a threshold at the Rice rate", "[apd_recei
     // An independent check of the formula the threshold comes from: count the upward crossings
     // of the simulated detector noise. At TNR 2.5 the Rice rate is 2.89e8 * exp(-3.125) = 1.27e7 /s,
     // about 1600 crossings in 2^20 samples of 0.125 ns.
-    SensorConfig c;
-    const ApdReceiver apd(c, 0.0);
+    Sensor c = sensor_preset("paper_ladar");
+    const ApdReceiver apd(c.receiver, 0.0);
     const WaveformReceiver receiver(apd, 1e-9);
     RandomSequence rng(42, RandomStream::waveform_noise, 0, 0);
     const std::size_t n = std::size_t{1} << 20;
@@ -48,7 +49,7 @@ TEST_CASE("band-limited noise crosses a threshold at the Rice rate", "[apd_recei
     int crossings = 0;
     for (std::size_t i = 1; i < n; ++i) crossings += noise[i - 1] <= tnr && noise[i] > tnr;
     const double seconds = n * receiver.bin_s();
-    CHECK(crossings / seconds == Approx(rice_false_alarm_rate_hz(tnr, c.bandwidth_hz)).epsilon(0.10));
+    CHECK(crossings / seconds == Approx(rice_false_alarm_rate_hz(tnr, c.receiver.bandwidth_hz)).epsilon(0.10));
 }
 
 TEST_CASE("Gaussian pulse shape: unit energy, FWHM, 10-90 % rise time", "[apd_receiver]") {

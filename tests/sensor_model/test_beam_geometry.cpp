@@ -8,6 +8,7 @@
 
 #include "ladarsim/sensor_model/beam_geometry.h"
 #include "ladarsim/sensor_model/gimbal.h"
+#include "ladarsim/sensor_model/sensor.h"
 
 using namespace ladarsim::sensor_model;
 
@@ -38,16 +39,16 @@ TEST_CASE("beam axis points where the gimbal and galvo angles say", "[beam_geome
 }
 
 TEST_CASE("gimbal slews at its rate limit and stops at its limits", "[gimbal]") {
-    const SensorConfig c;  // 16 deg/s, +-175 deg azimuth, -30..90 deg elevation
+    const Sensor c = sensor_preset("paper_ladar");  // 16 deg/s, +-175 deg azimuth, -30..90 deg elevation
     const double deg = std::numbers::pi / 180.0;
-    Gimbal g(c, {});
+    Gimbal g(c.gimbal, {});
     g.slew_towards({10 * deg, -2 * deg}, 0.05);  // one 20 Hz frame: at most 0.8 deg per axis
     CHECK(g.pointing().az_rad == Approx(0.8 * deg));
     CHECK(g.pointing().el_rad == Approx(-0.8 * deg));
     for (int i = 0; i < 20; ++i) g.slew_towards({10 * deg, -2 * deg}, 0.05);
     CHECK(g.pointing().az_rad == Approx(10 * deg));
     CHECK(g.pointing().el_rad == Approx(-2 * deg));
-    Gimbal far(c, {179 * deg, -80 * deg});
+    Gimbal far(c.gimbal, {179 * deg, -80 * deg});
     CHECK(far.pointing().az_rad == Approx(175 * deg));
     CHECK(far.pointing().el_rad == Approx(-30 * deg));
 }

@@ -23,9 +23,9 @@ BeamSurface one_surface(double range_m, double energy_j, std::uint32_t object_id
 }  // namespace
 
 TEST_CASE("false alarms over 1e6 range gates match the Rice rate", "[beam_receiver]") {
-    SensorConfig c;
-    c.range_folding = false;
-    c.max_range_m = 2000.0;  // a 13.3 us gate
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
+    c.receiver.max_range_m = 2000.0;  // a 13.3 us gate
     const BeamReceiver receiver(c, ladarsim::test::vacuum());
     const int gates = 1'000'000;
     long long alarms = 0;
@@ -41,15 +41,15 @@ TEST_CASE("false alarms over 1e6 range gates match the Rice rate", "[beam_receiv
     }
     // Rice: B / sqrt(3) exp(-TNR^2 / 2) with the threshold set for 75 /s: 1.0e-3 per gate.
     const double gate_s = 2.0 * 2000.0 / kSpeedOfLight_mps;
-    const double expected = gates * rice_false_alarm_rate_hz(receiver.apd().threshold_to_noise(), c.bandwidth_hz) * gate_s;
+    const double expected = gates * rice_false_alarm_rate_hz(receiver.apd().threshold_to_noise(), c.receiver.bandwidth_hz) * gate_s;
     CHECK(expected == Approx(1000.6).epsilon(0.01));
     CHECK(static_cast<double>(alarms) == Approx(expected).epsilon(0.10));
 }
 
 TEST_CASE("detection probability of a return follows the Gaussian noise at its peak", "[beam_receiver]") {
-    SensorConfig c;
-    c.range_folding = false;
-    c.false_alarm_rate_hz = 1e-9;  // count only the surface
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
+    c.receiver.false_alarm_rate_hz = 1e-9;  // count only the surface
     const BeamReceiver receiver(c, ladarsim::test::vacuum());
     const ApdReceiver& apd = receiver.apd();
     const PulseShape pulse = receiver.waveform().pulse();
@@ -71,9 +71,9 @@ TEST_CASE("detection probability of a return follows the Gaussian noise at its p
 }
 
 TEST_CASE("range folding: returns beyond c / (2 PRF) arrive in a later pulse's gate", "[beam_receiver]") {
-    SensorConfig c;  // the paper's 1 MHz: 149.9 m unambiguous range
+    Sensor c = sensor_preset("paper_ladar");  // the paper's 1 MHz: 149.9 m unambiguous range
     const BeamReceiver folding(c, ladarsim::test::vacuum(), false);
-    c.range_folding = false;
+    c.receiver.range_folding = false;
     const BeamReceiver coded(c, ladarsim::test::vacuum(), false);
     const double energy = 1e-14;
     const auto folded = folding.receive({one_surface(600.0, energy)}, BeamKey{1, 0, 0});
@@ -88,22 +88,22 @@ TEST_CASE("range folding: returns beyond c / (2 PRF) arrive in a later pulse's g
 }
 
 TEST_CASE("a strong near return saturates and never reports more than the pulse", "[beam_receiver]") {
-    SensorConfig c;
-    c.range_folding = false;
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
     const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
     // A white wall 5 m away would put 7e-9 J on the detector: amps, far past the 2 mA clip.
     const auto r = receiver.receive({one_surface(5.0, 7e-9)}, BeamKey{1, 0, 0});
     REQUIRE(r.size() == 1);
     CHECK(r[0].saturated);
     CHECK(r[0].energy_j < 7e-9);
-    CHECK(r[0].energy_j == Approx(c.saturation_current_a / (receiver.apd().amps_per_watt() *
+    CHECK(r[0].energy_j == Approx(c.receiver.saturation_current_a / (receiver.apd().amps_per_watt() *
                                                             receiver.waveform().pulse().peak_per_joule())));
-    CHECK(r[0].energy_j < c.pulse_energy_j());
+    CHECK(r[0].energy_j < c.transmitter.pulse_energy_j());
 }
 
 TEST_CASE("hard cases give finite, sensible numbers: 2 km, grazing stretch, sub-threshold", "[beam_receiver]") {
-    SensorConfig c;
-    c.range_folding = false;
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
     const BeamReceiver receiver(c, ladarsim::test::vacuum());
     // A 0.3 m drone at 2 km holding 6 % of the footprint: about 1e-15 J.
     auto far = receiver.receive({one_surface(2000.0, 2e-15)}, BeamKey{1, 0, 1});
@@ -131,10 +131,10 @@ TEST_CASE("hard cases give finite, sensible numbers: 2 km, grazing stretch, sub-
 }
 
 TEST_CASE("reported returns: all, first, last, strongest, first and last", "[beam_receiver]") {
-    SensorConfig c;
-    c.range_folding = false;
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
     auto receive = [&](ReportedReturns mode) {
-        c.reported_returns = mode;
+        c.receiver.reported_returns = mode;
         const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
         return receiver.receive({one_surface(100.0, 1e-15, 1), one_surface(101.0, 5e-15, 2), one_surface(102.0, 2e-15, 3)},
                                 BeamKey{1, 0, 0});

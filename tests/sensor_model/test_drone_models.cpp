@@ -26,11 +26,10 @@ TEST_CASE("procedural and real quadcopters of one span return alike at 200 m and
     auto ours = std::make_shared<scene::Model>(scene::make_quadcopter());
     for (auto& m : ours->materials) m.reflectance = 0.3;
 
-    SensorConfig c;
-    c.footprint_samples = 256;
+    const Sensor c = sensor_preset("paper_ladar");
     for (double range : {200.0, 1000.0}) {
-        const CountStatistics a = rendered_point_count(c, ours, range, 16, false, 5);
-        const CountStatistics b = rendered_point_count(c, real, range, 16, false, 5);
+        const CountStatistics a = rendered_point_count(c, 256, ours, range, 16, false, 5);
+        const CountStatistics b = rendered_point_count(c, 256, real, range, 16, false, 5);
         WARN(range << " m: procedural " << a.mean << " returns, real mesh " << b.mean);
         CHECK(a.mean > 0.0);
         CHECK(b.mean > 0.0);

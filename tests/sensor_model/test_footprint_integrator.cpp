@@ -9,6 +9,7 @@
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "../support/closed_form_scenario.h"
+#include "../support/sensors.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
@@ -24,11 +25,11 @@ double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 /// (sigma = divergence / 4 per axis) is round and separable, so in axes turned with the square the
 /// share is a product of two normal-CDF differences, over F = 1 - exp(-4.5) for the truncated
 /// footprint's renormalisation. Valid while the square lies well inside the truncation radius.
-double plate_share(const SensorConfig& c, double half_m, double distance_m, double roll, double az, double el) {
-    const double sigma = 0.25 * c.divergence_mrad * 1e-3;
+double plate_share(const Sensor& c, double half_m, double distance_m, double roll, double az, double el) {
+    const double sigma = 0.25 * c.transmitter.divergence_mrad * 1e-3;
     const double half = std::atan(half_m / distance_m);
     auto axis = [&](double centre) { return normal_cdf((centre + half) / sigma) - normal_cdf((centre - half) / sigma); };
-    const double captured = -std::expm1(-2.0 * c.footprint_truncation * c.footprint_truncation);
+    const double captured = -std::expm1(-2.0 * kTruncation * kTruncation);
     const double u = -az * std::cos(roll) - el * std::sin(roll), v = az * std::sin(roll) - el * std::cos(roll);
     return axis(u) * axis(v) / captured;
 }
@@ -45,8 +46,8 @@ struct PlateRun {
 /// about the axis, a diamond filling half its outline, whose edges cut the sampled cells.
 PlateRun plate_run(int samples, double tolerance, double distance_m, double roll_deg = 45.0) {
     Scenario s = closed_form_scenario();
-    s.sensor.footprint_samples = samples;
-    s.sensor.footprint_tolerance = tolerance;
+    s.render.footprint_samples = samples;
+    s.render.footprint_tolerance = tolerance;
     const double half = 0.05;
     s.scene.objects.push_back(object_at(1, plate(2 * half, 1.0),
                                         scene::Trajectory::fixed(scene::Pose{{distance_m, 0.0, 0.0},
@@ -56,15 +57,15 @@ PlateRun plate_run(int samples, double tolerance, double distance_m, double roll
     const BeamReceiver receiver(s.sensor, s.atmosphere, false);
     const auto& apd = receiver.apd();
     const double threshold_pe = apd.threshold_a() / (apd.amps_per_watt() * receiver.waveform().pulse().peak_per_joule()) *
-                                s.sensor.responsivity_a_per_w / kElementaryCharge_c;
+                                s.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
     const double full = extended_target_photoelectrons(s.sensor, 1.0, 1.0, distance_m);
-    const double r_max = s.sensor.footprint_truncation * 0.5 * s.sensor.divergence_mrad * 1e-3;
+    const double r_max = s.render.footprint_truncation * 0.5 * s.sensor.transmitter.divergence_mrad * 1e-3;
 
     std::map<int, const Return*> seen;
     for (const Return& r : f.returns) seen[r.row * 1000 + r.column] = &r;
     PlateRun run;
     run.rays_per_beam = double(renderer.rays_last_frame()) / renderer.raster().beam_count();
-    const GalvoRaster& raster = renderer.raster();
+    const ScanPattern& raster = renderer.raster();
     for (int row = 0; row < raster.rows(); ++row) {
         for (int step = 0; step < raster.columns(); ++step) {
             const RasterBeam b = raster.beam(row, step);
@@ -97,7 +98,7 @@ TEST_CASE("a plane patch integrated without rays equals brute force on a tilted 
     auto render = [yaw_deg](int samples) {
         Scenario s = closed_form_scenario();
         s.render.jitter = false;
-        s.sensor.footprint_samples = samples;
+        s.render.footprint_samples = samples;
         s.scene.objects.push_back(object_at(1, plate(800.0, 0.4),
                                             scene::Trajectory::fixed(scene::Pose{
                                                 {100.0, 0.0, 0.0}, scene::orientation_from_ypr_deg(yaw_deg, 0, 0)})));

@@ -111,7 +111,7 @@ TEST_CASE("a moving target is hit where its trajectory is at each beam's emissio
     const Frame f = renderer.render(0);
 
     REQUIRE(!f.returns.empty());
-    const double footprint_radius_m = distance_m * 0.5 * 0.62e-3 * s.sensor.footprint_truncation;
+    const double footprint_radius_m = distance_m * 0.5 * 0.62e-3 * s.render.footprint_truncation;
     for (const auto& r : f.returns) {
         REQUIRE(r.object_id == 2);
         // The beam axis crosses the plate's plane (x = 100 m; the plate faces along x) at y_axis;
@@ -155,8 +155,8 @@ TEST_CASE("frames are identical with one, two and eight threads", "[frame_render
     Scenario s = closed_form_scenario();
     // Every random process on: speckle, noise, jitter, false alarms, waveforms at the plate's edges.
     s.render.noise = true;
-    s.sensor.range_folding = true;
-    s.sensor.false_alarm_rate_hz = 1e5;  // about one false alarm per frame
+    s.sensor.receiver.range_folding = true;
+    s.sensor.receiver.false_alarm_rate_hz = 1e5;  // about one false alarm per frame
     s.scene.objects.push_back(object_at(1, plate(50.0, 0.3), fixed_at(300.0, 0, 0)));
     s.scene.objects.push_back(
         object_at(2, plate(0.3, 0.6), sliding({250.0, -1.0, 0.2}, {0.0, 40.0, 0.0})));

@@ -37,7 +37,7 @@ Seen render_and_check(const Scenario& s, std::initializer_list<std::uint64_t> fr
         if (o.id != 1 && (flyer || obstacle)) clutter.insert(o.id);
     }
     Seen seen;
-    const double half_field = 0.5 * std::min(s.sensor.field_az_deg, s.sensor.field_el_deg) * M_PI / 180.0;
+    const double half_field = 0.5 * std::min(s.sensor.scan->field_az_rad(), s.sensor.scan->field_el_rad());
     for (std::uint64_t k : frames) {
         const Frame f = renderer.render(k);
         for (const Return& r : f.returns) {

@@ -7,10 +7,12 @@
 #include "ladarsim/scene/trajectory.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
 #include "ladarsim/sensor_model/target_point_counts.h"
+#include "../support/sensors.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
 using namespace ladarsim::sensor_model;
+using namespace ladarsim::test;
 
 TEST_CASE("Eqs. 4-8 with a 0.65 deg field reproduce Table 1's printed FOV_m, BL and TBI", "[table1]") {
     for (const PrintedTable1Row& row : printed_table1()) {
@@ -35,13 +37,13 @@ namespace {
 /// Beams of the raster whose axis meets a square of side `side` facing the sensor at `range_m` in
 /// direction (az, el), and beams whose truncated footprint reaches it: the plate's plane is
 /// crossed by each axis at a point whose offset from the centre, in the plate's own axes, decides.
-std::pair<int, int> centres_and_touching(const SensorConfig& c, double range_m, double az, double el, double side) {
-    const GalvoRaster raster(c);
+std::pair<int, int> centres_and_touching(const Sensor& c, double range_m, double az, double el, double side) {
+    const ScanPattern& raster = *c.scan;
     const Eigen::Quaterniond facing = scene::orientation_from_ypr_deg(180.0 + az * 180.0 / M_PI, -el * 180.0 / M_PI, 0.0);
     const Eigen::Vector3d centre = range_m * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
     const Eigen::Vector3d n = facing * Eigen::Vector3d::UnitX(), u = facing * Eigen::Vector3d::UnitY(),
                           v = facing * Eigen::Vector3d::UnitZ();
-    const double footprint = c.footprint_truncation * 0.5 * c.divergence_mrad * 1e-3 * range_m;
+    const double footprint = kTruncation * 0.5 * c.transmitter.divergence_mrad * 1e-3 * range_m;
     int centres = 0, touching = 0;
     for (int row = 0; row < raster.rows(); ++row) {
         for (int k = 0; k < raster.columns(); ++k) {
@@ -60,15 +62,14 @@ std::pair<int, int> centres_and_touching(const SensorConfig& c, double range_m, 
 }  // namespace
 
 TEST_CASE("rendered plate at 200 m: between the beam centres on it and the footprints touching it", "[table1]") {
-    SensorConfig c;
-    c.footprint_samples = 64;
+    const Sensor c = sensor_preset("paper_ladar");
     const auto plate = test::plate(0.3, 0.5);
-    const double pitch_az = c.field_az_deg * M_PI / 180.0 / c.beams_az, pitch_el = c.field_el_deg * M_PI / 180.0 / c.beams_el;
+    const double pitch_az = c.scan->pitch_az_rad(), pitch_el = c.scan->pitch_el_rad();
     for (double fx : {-0.5, -0.2, 0.0, 0.3}) {
         for (double fy : {-0.4, 0.0, 0.25}) {
             const double az = fx * pitch_az, el = fy * pitch_el;
             const auto [centres, touching] = centres_and_touching(c, 200.0, az, el, 0.3);
-            const int rendered = rendered_point_count_at(c, plate, 200.0, az, el, false, 1, 0);
+            const int rendered = rendered_point_count_at(c, 64, plate, 200.0, az, el, false, 1, 0);
             INFO("offset " << fx << ", " << fy << ": centres " << centres << ", touching " << touching);
             CHECK(rendered >= centres);
             CHECK(rendered <= touching);
@@ -77,11 +78,11 @@ TEST_CASE("rendered plate at 200 m: between the beam centres on it and the footp
 }
 
 TEST_CASE("rendered plate counts fall with range", "[table1]") {
-    SensorConfig c;
+    Sensor c = sensor_preset("paper_ladar");
     const auto plate = test::plate(0.3, 0.5);
     double previous = 1e9;
     for (double range : {200.0, 500.0, 800.0, 1400.0, 2000.0}) {
-        const CountStatistics s = rendered_point_count(c, plate, range, 12, false, 3);
+        const CountStatistics s = rendered_point_count(c, 0, plate, range, 12, false, 3);
         INFO("range " << range << ": mean " << s.mean);
         CHECK(s.mean < previous);
         CHECK(s.min <= s.max);

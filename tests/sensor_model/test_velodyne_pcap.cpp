@@ -11,7 +11,7 @@
 #include "ladarsim/sensor_model/galvo_raster.h"
 #include "ladarsim/sensor_model/pcd_file.h"
 #include "ladarsim/sensor_model/scenario.h"
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/sensor.h"
 #include "ladarsim/sensor_model/velodyne_pcap.h"
 #include "../support/scratch_dir.h"
 
@@ -65,8 +65,8 @@ TEST_CASE("the recorded revolution turns at the VLP-16 preset's rate, direction 
         WARN("shared data not present: " << capture_file());
         return;
     }
-    const SensorConfig preset = sensor_preset("velodyne_vlp16");
-    const GalvoRaster raster(preset);
+    const Sensor preset = sensor_preset("velodyne_vlp16");
+    const ScanPattern& raster = *preset.scan;
     const double preset_rate = (raster.beam(0, 1).az_offset_rad - raster.beam(0, 0).az_offset_rad) /
                                (raster.beam(0, 1).time_offset_s - raster.beam(0, 0).time_offset_s);
     for (const Frame& f : read_velodyne_vlp16_pcap(capture_file())) {
@@ -93,7 +93,7 @@ TEST_CASE("the recorded revolution turns at the VLP-16 preset's rate, direction 
         for (auto it = std::next(column_az.begin()); it != column_az.end(); ++it)
             if (it->first == std::prev(it)->first + 1) steps.push_back(std::abs(std::remainder(it->second - std::prev(it)->second, 2 * M_PI)));
         std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-        CHECK(steps[steps.size() / 2] == Approx(2 * M_PI / preset.beams_az).epsilon(0.01));
+        CHECK(steps[steps.size() / 2] == Approx(2 * M_PI / raster.columns()).epsilon(0.01));
     }
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("the VLP-16 preset, re-rendering the recorded revolution's own scene, 
             if (d < best) best = d, nearest = q;
         }
         const bool back = nearest && best < 0.11 * M_PI / 180;  // within half a step and a little
-        if (r.range_m >= s.sensor.max_range_m) continue;
+        if (r.range_m >= s.sensor.receiver.max_range_m) continue;
         if (r.intensity < 1) {
             ++dark;
             dark_found += back;

@@ -28,12 +28,12 @@ std::shared_ptr<const scene::Model> fog_box(double x0, double x1, double half_wi
 }  // namespace
 
 TEST_CASE("free-path sampling of backscatter is an unbiased estimate of its integral", "[volume]") {
-    SensorConfig c;
-    c.range_folding = false;
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
     const BeamReceiver receiver(c, test::vacuum(), false);
     const scene::Material fog = scene::fog_medium("fog", 150.0);  // alpha 0.02 /m, beta 3.1e-4 /m/sr
     const raytrace::VolumeSegment segment{9, 40.0, 140.0, fog.extinction_per_m, fog.backscatter_per_m_sr};
-    const double area = c.aperture_area_m2(), r2 = area / M_PI;
+    const double area = c.optics.aperture_area_m2(), r2 = area / M_PI;
     const int draws = 200000;
     RandomSequence rng(11, RandomStream::volume_scatter, 0, 0);
     std::vector<BeamSurface> volumes;
@@ -62,10 +62,7 @@ TEST_CASE("free-path sampling of backscatter is an unbiased estimate of its inte
 
 TEST_CASE("a sensor inside fog: the wall behind is dimmed by exp(-2 tau), the fog itself returns", "[volume]") {
     Scenario s = test::closed_form_scenario();
-    s.sensor.beams_az = 5;
-    s.sensor.beams_el = 1;
-    s.sensor.field_az_deg = 0.01;
-    s.sensor.field_el_deg = 0.01;
+    test::set_raster(s.sensor, 5, 1, 0.01, 0.01);
     const double mor = 100.0, fog_end = 30.0, wall = 80.0;
     // The fog box runs from x = -20 m (behind the sensor) to 30 m: the beams start inside it.
     s.scene.objects.push_back(object_at(1, fog_box(-20.0, fog_end, 10.0, mor), fixed_at(5.0, 0.0, -10.0), scene::ObjectClass::cloud));

@@ -23,17 +23,17 @@ double energy_for_snr(const ApdReceiver& apd, const PulseShape& pulse, double sn
     return power / pulse.peak_per_joule();
 }
 
-SensorConfig quiet_sensor() {
-    SensorConfig c;
-    c.range_folding = false;
+Sensor quiet_sensor() {
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
     return c;
 }
 
 }  // namespace
 
 TEST_CASE("range jitter of the timed pulse against its first-order closed form", "[waveform]") {
-    const SensorConfig c = quiet_sensor();
-    const ApdReceiver apd(c, 0.0);
+    const Sensor c = quiet_sensor();
+    const ApdReceiver apd(c.receiver, 0.0);
     const WaveformReceiver receiver(apd, 1e-9);
     for (double snr : {15.0, 40.0}) {
         const double energy = energy_for_snr(apd, receiver.pulse(), snr);
@@ -68,7 +68,7 @@ TEST_CASE("range jitter of the timed pulse against its first-order closed form",
 }
 
 TEST_CASE("two surfaces 10 cm apart make one return, 50 cm apart two, energies in their ratio", "[waveform]") {
-    const SensorConfig c = quiet_sensor();
+    const Sensor c = quiet_sensor();
     const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
     const ApdReceiver& apd = receiver.apd();
     const double e1 = energy_for_snr(apd, receiver.waveform().pulse(), 200.0);
@@ -100,7 +100,7 @@ TEST_CASE("two surfaces 10 cm apart make one return, 50 cm apart two, energies i
 }
 
 TEST_CASE("the pulse-merging distance is the pulse's own: c tau / 2 = 15 cm", "[waveform]") {
-    const SensorConfig c = quiet_sensor();
+    const Sensor c = quiet_sensor();
     const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
     const double e = energy_for_snr(receiver.apd(), receiver.waveform().pulse(), 200.0);
     auto returns_at_gap = [&](double gap_m) {

@@ -1,7 +1,8 @@
 #pragma once
 // The InGaAs APD receiver: noise, threshold, detection, timing jitter and saturation.
 #include "ladarsim/sensor_model/atmosphere.h"
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/optics.h"
+#include "ladarsim/sensor_model/receiver.h"
 
 namespace ladarsim::sensor_model {
 
@@ -13,7 +14,7 @@ double threshold_to_noise_for(double false_alarm_rate_hz, double bandwidth_hz);
 
 /// Sunlight scattered by the scene into the receiver (W): E_sun(lambda) * filter width * (rho / pi)
 /// * solid angle of the receiver field * aperture area * optics efficiency; 0 at night.
-double solar_background_power_w(const SensorConfig& sensor, const Atmosphere& atmosphere);
+double solar_background_power_w(const Optics& optics, const Atmosphere& atmosphere);
 
 /// A Gaussian pulse of unit energy, FWHM `fwhm_s`, stretched by the spread of arrival times of the
 /// sub-ray echoes that make one return (their energy-weighted standard deviation `spread_s`):
@@ -28,7 +29,7 @@ struct PulseShape {
 
 class ApdReceiver {
 public:
-    ApdReceiver(const SensorConfig& sensor, double background_power_w);
+    ApdReceiver(const Receiver& receiver, double background_power_w);
 
     /// Output current per watt of optical power: gain x responsivity.
     double amps_per_watt() const { return gain_ * responsivity_; }

@@ -9,7 +9,7 @@
 #include "ladarsim/sensor_model/atmosphere.h"
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/frame.h"
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/sensor.h"
 #include "ladarsim/sensor_model/waveform.h"
 
 namespace ladarsim::sensor_model {
@@ -43,7 +43,7 @@ struct BeamKey {
 class BeamReceiver {
 public:
     /// `noise` false: no speckle, detector noise, jitter or false alarms (expectations only).
-    BeamReceiver(const SensorConfig& sensor, const Atmosphere& atmosphere, bool noise = true);
+    BeamReceiver(const Sensor& sensor, const Atmosphere& atmosphere, bool noise = true);
 
     /// Detected returns of one beam, sorted by reported range, filtered by `reported_returns`.
     std::vector<DetectedReturn> receive(std::vector<BeamSurface> surfaces, const BeamKey& key) const;
@@ -59,7 +59,7 @@ private:
     /// Moves a measured range into the gate of the pulse that received it: [0, c / (2 PRF)).
     void fold(DetectedReturn& r) const;
 
-    SensorConfig sensor_;
+    Sensor sensor_;
     bool noise_;
     double extinction_per_m_;
     ApdReceiver apd_;

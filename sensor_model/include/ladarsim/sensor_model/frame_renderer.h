@@ -8,7 +8,7 @@
 #include "ladarsim/sensor_model/beam_receiver.h"
 #include "ladarsim/sensor_model/footprint_integrator.h"
 #include "ladarsim/sensor_model/frame.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
+#include "ladarsim/sensor_model/scan_pattern.h"
 #include "ladarsim/sensor_model/gimbal.h"
 #include "ladarsim/sensor_model/scenario.h"
 
@@ -37,7 +37,7 @@ public:
 
     double frame_start_s(std::uint64_t index) const;
     GimbalPointing gimbal_pointing(std::uint64_t index);
-    const GalvoRaster& raster() const { return raster_; }
+    const ScanPattern& raster() const { return raster_; }
     /// Rays traced for the last frame rendered (probes and sub-rays): the cost of its accuracy.
     std::uint64_t rays_last_frame() const { return rays_last_frame_; }
     /// The scene as traced (for benchmarks: record its rays, trace them again raw).
@@ -62,7 +62,7 @@ private:
 
     const Scenario& scenario_;
     raytrace::TracedScene traced_;
-    GalvoRaster raster_;
+    const ScanPattern& raster_;
     BeamReceiver receiver_;
     FootprintIntegrator integrator_;
     std::vector<GimbalPointing> pointing_by_frame_;

@@ -1,18 +1,14 @@
 #pragma once
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/scan_pattern.h"
 
 namespace ladarsim::sensor_model {
 
-/// Where and when one beam of the raster fires, relative to the gimbal's pointing and the frame start.
-struct RasterBeam {
-    int column = 0;              ///< 0 = leftmost beam (largest azimuth), so images read as the sensor sees
-    int row = 0;                 ///< 0 = top line
-    double az_offset_rad = 0.0;  ///< from the field centre, positive to the left
-    double el_offset_rad = 0.0;  ///< from the field centre, positive up
-    double time_offset_s = 0.0;  ///< emission time after the frame start
+enum class GalvoSweep {
+    sawtooth,  ///< every line sweeps in +azimuth order, one line per galvo period (fly-back not modelled)
+    triangle,  ///< two lines per galvo period, alternating direction
 };
 
-/// The galvanometer raster: `beams_el` lines of `beams_az` beams filling the field.
+/// The galvanometer raster (the paper's LADAR): `beams_el` lines of `beams_az` beams filling the field.
 ///
 /// Angles: beam centres sit at the centres of equal cells, az = field / 2 - (column + 1/2) / beams_az
 /// * field (likewise el for rows, top row first). Timing: lines follow each other from the frame
@@ -21,29 +17,37 @@ struct RasterBeam {
 /// fires k * dwell after the line start, where dwell = line duration / beams_az. A sawtooth sweeps
 /// every line left to right (increasing column); a triangle sweep reverses every other line. The rest of
 /// the frame period after the last line is idle (gimbal settling).
-///
-/// A spinning head (ScanPattern::spinning) fills the same grid column by column instead: at each
-/// of `beams_az` azimuth steps per revolution it fires its `beams_el` channels one after another,
-/// so cell (row, column) fires at (column + row / beams_el) / (beams_az * frame rate).
-class GalvoRaster {
+class GalvoRaster final : public ScanPattern {
 public:
-    explicit GalvoRaster(const SensorConfig& config);
+    struct Parameters {
+        double field_az_deg = 0.0;
+        double field_el_deg = 0.0;
+        int beams_az = 0;
+        int beams_el = 0;
+        double galvo_rate_hz = 0.0;
+        GalvoSweep sweep = GalvoSweep::sawtooth;
+        double frame_rate_hz = 0.0;
+    };
+    explicit GalvoRaster(const Parameters& p);
+    /// Throws InputError naming the key for values no such head can have.
+    static std::shared_ptr<const GalvoRaster> read(JsonFields& scan);
 
-    int columns() const { return columns_; }
-    int rows() const { return rows_; }
-    int beam_count() const { return columns_ * rows_; }
-    /// The beam of raster cell (row, k): the k-th beam a galvo fires on that line, or the beam of
-    /// column k of a spinning head.
-    RasterBeam beam(int row, int k) const;
+    const Parameters& parameters() const { return p_; }
+    double line_duration_s() const;
+
+    std::string pattern() const override { return "galvo_raster"; }
+    int columns() const override { return p_.beams_az; }
+    int rows() const override { return p_.beams_el; }
+    RasterBeam beam(int row, int k) const override;
+    double frame_rate_hz() const override { return p_.frame_rate_hz; }
+    double frame_scan_duration_s() const override { return p_.beams_el * line_duration_s(); }
+    double beam_dwell_s() const override { return line_duration_s() / p_.beams_az; }
+    double field_az_deg() const override { return p_.field_az_deg; }
+    double field_el_deg() const override { return p_.field_el_deg; }
+    nlohmann::json to_json() const override;
 
 private:
-    int columns_;
-    int rows_;
-    double field_az_rad_;
-    double field_el_rad_;
-    double line_duration_s_;
-    GalvoSweep sweep_;
-    ScanPattern scan_;
+    Parameters p_;
 };
 
 }  // namespace ladarsim::sensor_model

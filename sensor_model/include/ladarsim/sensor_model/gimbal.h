@@ -1,5 +1,7 @@
 #pragma once
-#include "ladarsim/sensor_model/sensor_config.h"
+#include <nlohmann/json.hpp>
+
+#include "ladarsim/scene/json_fields.h"
 
 namespace ladarsim::sensor_model {
 
@@ -9,11 +11,24 @@ struct GimbalPointing {
     double el_rad = 0.0;  ///< positive up
 };
 
+/// How far and how fast the mount can turn the field. A fixed head (a spinning lidar) has all four zero
+/// (elevation limits both 0).
+struct GimbalLimits {
+    double az_limit_deg = 0.0;   ///< +- about the mount's z axis
+    double el_min_deg = 0.0;
+    double el_max_deg = 0.0;
+    double slew_rate_dps = 0.0;
+
+    /// Throws InputError naming the key (el_min_deg must not lie above el_max_deg).
+    static GimbalLimits read(JsonFields& gimbal);
+    nlohmann::json to_json() const;
+};
+
 /// A two-axis gimbal: each axis turns at up to the slew rate, within its limits. It is held still
 /// while a frame is scanned (step and stare) and moves between frames.
 class Gimbal {
 public:
-    Gimbal(const SensorConfig& config, GimbalPointing start);
+    Gimbal(const GimbalLimits& limits, GimbalPointing start);
 
     GimbalPointing pointing() const { return pointing_; }
     /// Turns for `duration_s` towards `target` (clamped to the limits), each axis at most

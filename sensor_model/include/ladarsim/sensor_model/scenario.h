@@ -10,7 +10,7 @@
 
 #include "ladarsim/scene/scene.h"
 #include "ladarsim/sensor_model/atmosphere.h"
-#include "ladarsim/sensor_model/sensor_config.h"
+#include "ladarsim/sensor_model/sensor.h"
 
 namespace ladarsim::sensor_model {
 
@@ -37,13 +37,19 @@ struct RenderSettings {
     /// Speckle, detector noise, timing jitter and false alarms. Off: every return is its noise-free
     /// expectation, still subject to the detection threshold (for checking against closed forms).
     bool noise = true;
+    /// 0: adaptive footprints to `footprint_tolerance`; N > 0: N stratified sub-rays per beam
+    /// (brute force, the reference the adaptive integration is checked against).
+    int footprint_samples = 0;
+    /// Relative error allowed on each object's echo energy per beam (adaptive footprints).
+    double footprint_tolerance = 0.05;
+    double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
 };
 
 /// Everything one run needs, read from a scenario file: the single source of truth of a dataset.
 struct Scenario {
     std::filesystem::path file;
     scene::Scene scene;
-    SensorConfig sensor;
+    Sensor sensor;
     SensorMount mount;
     RenderSettings render;
     Atmosphere atmosphere;
