@@ -24,9 +24,6 @@ constexpr std::size_t kUdpHeader = 8;
 // lost a fragment, and its IPv4 identification may come round again for a later one.
 constexpr double kReassemblyTimeoutS = 1.0;
 
-std::uint32_t le32(const unsigned char* p) {
-    return p[0] | p[1] << 8 | p[2] << 16 | static_cast<std::uint32_t>(p[3]) << 24;
-}
 std::uint16_t be16(const unsigned char* p) { return static_cast<std::uint16_t>(p[0] << 8 | p[1]); }
 std::uint32_t be32(const unsigned char* p) { return static_cast<std::uint32_t>(be16(p)) << 16 | be16(p + 2); }
 
@@ -106,15 +103,15 @@ void for_each_udp_datagram(const std::filesystem::path& file, const std::functio
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(name, "(file)", "cannot open");
     const std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (b.size() < kPcapHeader || le32(b.data()) != kPcapMagic) throw InputError(name, "magic", "not a little-endian libpcap file");
-    if (le32(&b[20]) != kLinkEthernet) throw InputError(name, "link type", "not Ethernet");
+    if (b.size() < kPcapHeader || read_le<std::uint32_t>(b, 0) != kPcapMagic) throw InputError(name, "magic", "not a little-endian libpcap file");
+    if (read_le<std::uint32_t>(b, 20) != kLinkEthernet) throw InputError(name, "link type", "not Ethernet");
     Capture capture(name, visit);
     std::size_t index = 0;
     for (std::size_t off = kPcapHeader; off < b.size();) {
         ++index;
         if (off + kRecordHeader > b.size()) throw InputError(name, "record " + std::to_string(index), "capture ends inside a record header");
-        const double time_s = le32(&b[off]) + 1e-6 * le32(&b[off + 4]);
-        const std::size_t length = le32(&b[off + 8]), wire_length = le32(&b[off + 12]);
+        const double time_s = read_le<std::uint32_t>(b, off) + 1e-6 * read_le<std::uint32_t>(b, off + 4);
+        const std::size_t length = read_le<std::uint32_t>(b, off + 8), wire_length = read_le<std::uint32_t>(b, off + 12);
         off += kRecordHeader;
         if (length > b.size() - off) throw InputError(name, "record " + std::to_string(index), "capture ends inside a packet");
         capture.record(index, time_s, std::span<const unsigned char>(b).subspan(off, length), wire_length > length);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <span>
 #include <tuple>
@@ -17,13 +16,6 @@ constexpr std::size_t kPayload = 1206;
 constexpr double kElevationDeg[16] = {-15, 1, -13, 3, -11, 5, -9, 7, -7, 9, -5, 11, -3, 13, -1, 15};
 constexpr double kFiringSequenceS = 55.296e-6;  // two per block
 constexpr double kFiringS = 2.304e-6;           // between channels
-
-template <typename T>
-T at(std::span<const unsigned char> b, std::size_t offset) {
-    T v;
-    std::memcpy(&v, b.data() + offset, sizeof v);
-    return v;
-}
 
 /// Row of a channel: 0 for the highest (+15 deg), 15 for the lowest.
 int row_of(int channel) {
@@ -44,11 +36,11 @@ std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file) {
         const double packet_time = d.time_s;
         for (int block = 0; block < 12; ++block) {
             const std::size_t base = 100 * static_cast<std::size_t>(block);
-            if (at<std::uint16_t>(b, base) != 0xEEFF) throw InputError(name, "block flag", "not a Velodyne data block");
-            const double azimuth = at<std::uint16_t>(b, base + 2) / 100.0;
+            if (read_le<std::uint16_t>(b, base) != 0xEEFF) throw InputError(name, "block flag", "not a Velodyne data block");
+            const double azimuth = read_le<std::uint16_t>(b, base + 2) / 100.0;
             // The second firing sequence lies half way to the next block's azimuth.
             const std::size_t next = block < 11 ? base + 100 : base - 100;
-            double step = (at<std::uint16_t>(b, next + 2) / 100.0 - azimuth) * (block < 11 ? 1.0 : -1.0);
+            double step = (read_le<std::uint16_t>(b, next + 2) / 100.0 - azimuth) * (block < 11 ? 1.0 : -1.0);
             if (step < -180.0) step += 360.0;
             if (step > 180.0) step -= 360.0;
             for (int half = 0; half < 2; ++half) {
@@ -60,7 +52,7 @@ std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file) {
                 last_azimuth = az_deg;
                 for (int channel = 0; channel < 16; ++channel) {
                     const std::size_t p = base + 4 + 3 * static_cast<std::size_t>(16 * half + channel);
-                    const double range = at<std::uint16_t>(b, p) * 0.002;
+                    const double range = read_le<std::uint16_t>(b, p) * 0.002;
                     if (range <= 0.0) continue;
                     const double el = kElevationDeg[channel] * std::numbers::pi / 180.0;
                     // Velodyne azimuth turns clockwise from forward; ours is positive to the left.

@@ -3,6 +3,7 @@
 // packet format begins (no Debian library reads pcap without pulling in a capture stack).
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <span>
@@ -24,5 +25,13 @@ struct UdpDatagram {
 /// not such a capture, or that the capture's snap length cut short; an InputError the visitor
 /// throws passes through.
 void for_each_udp_datagram(const std::filesystem::path& file, const std::function<void(const UdpDatagram&)>& visit);
+
+/// The T at `offset` of a payload, in the little-endian order the lidars send (and this host uses).
+template <typename T>
+T read_le(std::span<const unsigned char> payload, std::size_t offset) {
+    T v;
+    std::memcpy(&v, payload.data() + offset, sizeof v);
+    return v;
+}
 
 }  // namespace ladarsim::sensor_model
