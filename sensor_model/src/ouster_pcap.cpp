@@ -236,16 +236,21 @@ std::vector<Frame> read_ouster_pcap(const std::filesystem::path& pcap, const Ous
 
 namespace {
 
-/// What Ouster's datasheets give per product line. OS1: 120 m at 80 % reflectance, beams of 0.13 deg
-/// FWHM (its 16- and 64-channel units; 32 channels are not listed). OS2: 240 m; no divergence found,
-/// so an estimate: the OS1-128's 0.18 deg FWHM halved, as the OS2 spreads its 128 channels over half
-/// the OS1-128's vertical field (22.5 deg, not 45: the same emitters behind twice the focal length).
+/// What Ouster's datasheets give per product line. OS1: 120 m at 80 % reflectance in 100 klx of
+/// sunlight, beams of 0.13 deg FWHM (its 16- and 64-channel units; 32 channels are not listed).
+/// OS2: 240 m; no divergence found, so an estimate: the OS1-128's 0.18 deg FWHM halved, as the OS2
+/// spreads its 128 channels over half the OS1-128's vertical field (22.5 deg, not 45: the same
+/// emitters behind twice the focal length).
+/// Peak power is not published: it is set so that the receiver estimated in ouster_sensor_json
+/// sees an 80 % Lambertian target at the datasheet's range, in full daylight (ladarsim's
+/// 0.25 W/m^2/nm of sunlight), at twice its threshold.
 struct ProductLine {
     std::string_view prefix;
     double max_range_m;
     double divergence_fwhm_deg;
+    double peak_power_w;
 };
-constexpr ProductLine kProductLines[] = {{"OS-1", 120.0, 0.13}, {"OS-2", 240.0, 0.09}};
+constexpr ProductLine kProductLines[] = {{"OS-1", 120.0, 0.13, 2.4}, {"OS-2", 240.0, 0.09, 6.7}};
 
 const ProductLine& product_line(const OusterCalibration& c) {
     for (const ProductLine& line : kProductLines) {
@@ -275,7 +280,7 @@ nlohmann::json ouster_sensor_json(const OusterCalibration& c) {
     // Ouster publishes no radiometry. What follows are estimates for an 865 nm VCSEL emitter and a
     // SPAD-array receiver, written with the keys of ladarsim's APD receiver: a pixel of ~10 % photon
     // detection efficiency, high gain and little excess noise, about a million dark counts a second,
-    // looking through a ~30 mm lens at as wide a field as its beam.
+    // looking through a ~30 mm lens at as wide a field as its beam (the three models share one housing).
     const double pulse_width_ns = 4.0;
     const double photon_detection_efficiency = 0.1;
     const double wavelength_nm = 865.0;
@@ -292,7 +297,7 @@ nlohmann::json ouster_sensor_json(const OusterCalibration& c) {
           {"azimuth_offset_deg", azimuth_offset_deg}}},
         {"transmitter",
          {{"wavelength_nm", wavelength_nm},
-          {"peak_power_w", 20.0},
+          {"peak_power_w", line.peak_power_w},
           {"pulse_width_ns", pulse_width_ns},
           {"pulse_rate_hz", pulse_rate_hz},
           {"divergence_mrad", divergence_mrad},
