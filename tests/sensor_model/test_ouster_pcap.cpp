@@ -370,20 +370,28 @@ TEST_CASE("what is not a capture of this Ouster unit is one InputError", "[ouste
     const auto os1 = decode(kOs1);
     const auto os2 = decode(kOs2);
     if (!os1 || !os2) return;
+    using Catch::Matchers::Contains;
     // The other unit's packets: 128 channels where the calibration has 32, and the other way.
-    CHECK_THROWS_AS(read_ouster_pcap(data_file(kOs2, ".pcap"), os1->calibration), InputError);
-    CHECK_THROWS_AS(read_ouster_pcap(data_file(kOs1, ".pcap"), os2->calibration), InputError);
-    // A capture cut off inside a packet.
-    std::filesystem::copy_file(data_file(kOs1, ".pcap"), dir / "cut.pcap");
-    std::filesystem::permissions(dir / "cut.pcap", std::filesystem::perms::owner_write, std::filesystem::perm_options::add);
-    std::filesystem::resize_file(dir / "cut.pcap", std::filesystem::file_size(dir / "cut.pcap") / 2);
-    CHECK_THROWS_AS(read_ouster_pcap(dir / "cut.pcap", os1->calibration), InputError);
+    CHECK_THROWS_WITH(read_ouster_pcap(data_file(kOs2, ".pcap"), os1->calibration), Contains("24832 bytes"));
+    CHECK_THROWS_WITH(read_ouster_pcap(data_file(kOs1, ".pcap"), os2->calibration), Contains("6464 bytes"));
+    auto damaged_copy = [&](const std::string& name) {
+        std::filesystem::copy_file(data_file(kOs1, ".pcap"), dir / name);
+        std::filesystem::permissions(dir / name, std::filesystem::perms::owner_write, std::filesystem::perm_options::add);
+        return dir / name;
+    };
+    const auto cut = damaged_copy("cut.pcap");
+    std::filesystem::resize_file(cut, std::filesystem::file_size(cut) / 2);
+    CHECK_THROWS_WITH(read_ouster_pcap(cut, os1->calibration), Contains("capture ends inside a packet"));
+    // The first column's measurement_id (after the pcap, record, Ethernet, IPv4 and UDP headers
+    // and the column's time stamp) beyond the 1024 columns.
+    const auto corrupt = damaged_copy("corrupt.pcap");
+    std::fstream(corrupt, std::ios::in | std::ios::out | std::ios::binary).seekp(24 + 16 + 14 + 20 + 8 + 8).write("\xff\xff", 2);
+    CHECK_THROWS_WITH(read_ouster_pcap(corrupt, os1->calibration), Contains("record 1") && Contains("measurement_id 65535"));
     // The right size but another unit's serial number in the packet header.
     OusterCalibration impostor = os2->calibration;
     impostor.serial = "992210000958";
-    CHECK_THROWS_AS(read_ouster_pcap(data_file(kOs2, ".pcap"), impostor), InputError);
-    // A profile the decoder does not read.
+    CHECK_THROWS_WITH(read_ouster_pcap(data_file(kOs2, ".pcap"), impostor), Contains("unit 992210000957"));
     OusterCalibration dual = os2->calibration;
     dual.udp_profile_lidar = "RNG19_RFL8_SIG16_NIR16_DUAL";
-    CHECK_THROWS_AS(read_ouster_pcap(data_file(kOs2, ".pcap"), dual), InputError);
+    CHECK_THROWS_WITH(read_ouster_pcap(data_file(kOs2, ".pcap"), dual), Contains("not decoded"));
 }
