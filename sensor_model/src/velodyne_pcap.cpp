@@ -2,28 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <numbers>
+#include <span>
 #include <tuple>
 
 #include "ladarsim/scene/input_error.h"
+#include "ladarsim/sensor_model/pcap_udp.h"
 
 namespace ladarsim::sensor_model {
 namespace {
 
 constexpr std::size_t kPayload = 1206;
-constexpr std::size_t kUdpHeaders = 14 + 20 + 8;  // Ethernet, IPv4 without options, UDP
 constexpr double kElevationDeg[16] = {-15, 1, -13, 3, -11, 5, -9, 7, -7, 9, -5, 11, -3, 13, -1, 15};
 constexpr double kFiringSequenceS = 55.296e-6;  // two per block
 constexpr double kFiringS = 2.304e-6;           // between channels
-
-template <typename T>
-T at(const std::vector<char>& b, std::size_t offset) {
-    T v;
-    std::memcpy(&v, b.data() + offset, sizeof v);
-    return v;
-}
 
 /// Row of a channel: 0 for the highest (+15 deg), 15 for the lowest.
 int row_of(int channel) {
@@ -35,29 +27,20 @@ int row_of(int channel) {
 
 std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file) {
     const std::string name = file.string();
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(name, "(file)", "cannot open");
-    const std::vector<char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (b.size() < 24 || at<std::uint32_t>(b, 0) != 0xa1b2c3d4u) throw InputError(name, "magic", "not a little-endian libpcap file");
     std::vector<Frame> frames(1);
     double last_azimuth = -1.0;
     int sequence = 0;
-    for (std::size_t off = 24; off + 16 <= b.size();) {
-        const auto ts_s = at<std::uint32_t>(b, off), ts_us = at<std::uint32_t>(b, off + 4);
-        const auto length = at<std::uint32_t>(b, off + 8);
-        off += 16;
-        if (off + length > b.size()) throw InputError(name, "packet", "capture ends inside a packet");
-        const std::size_t payload = off + kUdpHeaders;
-        off += length;
-        if (length != kUdpHeaders + kPayload) continue;  // position (GPS) packets and others
-        const double packet_time = ts_s + 1e-6 * ts_us;
+    for_each_udp_datagram(file, [&](const UdpDatagram& d) {
+        if (d.payload.size() != kPayload) return;  // position (GPS) packets and others
+        const auto& b = d.payload;
+        const double packet_time = d.time_s;
         for (int block = 0; block < 12; ++block) {
-            const std::size_t base = payload + 100 * static_cast<std::size_t>(block);
-            if (at<std::uint16_t>(b, base) != 0xEEFF) throw InputError(name, "block flag", "not a Velodyne data block");
-            const double azimuth = at<std::uint16_t>(b, base + 2) / 100.0;
+            const std::size_t base = 100 * static_cast<std::size_t>(block);
+            if (read_le<std::uint16_t>(b, base) != 0xEEFF) throw InputError(name, "block flag", "not a Velodyne data block");
+            const double azimuth = read_le<std::uint16_t>(b, base + 2) / 100.0;
             // The second firing sequence lies half way to the next block's azimuth.
             const std::size_t next = block < 11 ? base + 100 : base - 100;
-            double step = (at<std::uint16_t>(b, next + 2) / 100.0 - azimuth) * (block < 11 ? 1.0 : -1.0);
+            double step = (read_le<std::uint16_t>(b, next + 2) / 100.0 - azimuth) * (block < 11 ? 1.0 : -1.0);
             if (step < -180.0) step += 360.0;
             if (step > 180.0) step -= 360.0;
             for (int half = 0; half < 2; ++half) {
@@ -69,7 +52,7 @@ std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file) {
                 last_azimuth = az_deg;
                 for (int channel = 0; channel < 16; ++channel) {
                     const std::size_t p = base + 4 + 3 * static_cast<std::size_t>(16 * half + channel);
-                    const double range = at<std::uint16_t>(b, p) * 0.002;
+                    const double range = read_le<std::uint16_t>(b, p) * 0.002;
                     if (range <= 0.0) continue;
                     const double el = kElevationDeg[channel] * std::numbers::pi / 180.0;
                     // Velodyne azimuth turns clockwise from forward; ours is positive to the left.
@@ -90,7 +73,7 @@ std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file) {
                 ++sequence;
             }
         }
-    }
+    });
     std::erase_if(frames, [](const Frame& f) { return f.returns.empty(); });
     if (frames.empty()) throw InputError(name, "packets", "no VLP-16 data packets");
     for (std::size_t i = 0; i < frames.size(); ++i) {
