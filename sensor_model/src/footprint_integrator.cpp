@@ -95,7 +95,7 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
                       (receiver.apd().amps_per_watt() * receiver.waveform().pulse().peak_per_joule())),
       ellipticity_(scenario.sensor.transmitter.divergence_el_mrad / scenario.sensor.transmitter.divergence_mrad),
       small_object_rad_(0.0),
-      aperture_radius2_(scenario.sensor.optics.aperture_area_m2() / std::numbers::pi),
+      aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
       footprint_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.render.footprint_samples,
                  scenario.render.footprint_truncation) {
     small_object_rad_ = kSmallObjectFootprints * footprint_.max_offset_rad();
@@ -383,6 +383,7 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
         if (!(range > 0.0) || range > scenario_.sensor.receiver.max_range_m) return Patch::mixed;
         // Clear-air transmission is applied below at the patch's mean range: across a footprint
         // it changes by exp(-2 alpha dR), a fraction of a percent even at grazing incidence.
+        // The range dependence of through_aperture, relative to the patch's mean range below.
         const double e = std::abs(nd) / (range * range + aperture_radius2_);
         e_sum += e;
         et_sum += e * range;
