@@ -33,8 +33,8 @@ RasterBeam GalvoRaster::beam(int row, int step) const {
     b.row = row;
     const bool reversed = p_.sweep == GalvoSweep::triangle && b.row % 2 == 1;
     b.column = reversed ? p_.beams_az - 1 - step : step;
-    b.az_offset_rad = (0.5 - (b.column + 0.5) / p_.beams_az) * field_az_rad();
-    b.el_offset_rad = (0.5 - (b.row + 0.5) / p_.beams_el) * field_el_rad();
+    b.az_offset_rad = cell_centre_rad(b.column, p_.beams_az, field_az_rad());
+    b.el_offset_rad = cell_centre_rad(b.row, p_.beams_el, field_el_rad());
     b.time_offset_s = line_duration_s() * (b.row + static_cast<double>(step) / p_.beams_az);
     return b;
 }

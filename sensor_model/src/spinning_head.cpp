@@ -20,8 +20,8 @@ RasterBeam SpinningHead::beam(int row, int step) const {
     RasterBeam b;
     b.row = row;
     b.column = step;
-    b.az_offset_rad = (0.5 - (b.column + 0.5) / p_.steps_per_revolution) * field_az_rad();
-    b.el_offset_rad = (0.5 - (b.row + 0.5) / p_.channels) * field_el_rad();
+    b.az_offset_rad = cell_centre_rad(b.column, p_.steps_per_revolution, field_az_rad());
+    b.el_offset_rad = cell_centre_rad(b.row, p_.channels, field_el_rad());
     b.time_offset_s = frame_scan_duration_s() * (step + static_cast<double>(row) / p_.channels) / p_.steps_per_revolution;
     return b;
 }

@@ -21,6 +21,10 @@ struct RasterBeam {
     double time_offset_s = 0.0;  ///< emission time after the frame start
 };
 
+/// The centre of cell `index` of `count` equal cells across a field of `field_rad`, from the
+/// field's centre, cell 0 at the positive end (left, or top).
+inline double cell_centre_rad(int index, int count, double field_rad) { return (0.5 - (index + 0.5) / count) * field_rad; }
+
 class ScanPattern {
 public:
     virtual ~ScanPattern() = default;
