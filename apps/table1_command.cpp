@@ -8,7 +8,7 @@
 
 #include "command.h"
 #include "plot_script.h"
-#include "ladarsim/sensor_model/target_point_counts.h"
+#include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/atomic_file.h"
 #include "ladarsim/sensor_model/json_file.h"
@@ -47,10 +47,10 @@ struct Table1Command {
         const auto drone = std::make_shared<scene::Model>(scene::make_quadcopter());
         sensor_model::SensorConfig sensor = sensor_model::sensor_preset("paper_ladar");
         sensor.footprint_samples = table_samples;
-        const nlohmann::json rows = sensor_model::table1_comparison(
+        const nlohmann::json rows = experiments::table1_comparison(
             sensor, plate, drone, table_frames, table1->count("--seed") ? seed : 1,
             [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
-        const std::string markdown = sensor_model::table1_markdown(rows);
+        const std::string markdown = experiments::table1_markdown(rows);
         std::cout << markdown;
         if (!table_json.empty()) sensor_model::write_json(table_json, rows);
         if (!table_markdown.empty()) {

@@ -1,4 +1,4 @@
-#include "ladarsim/sensor_model/target_point_counts.h"
+#include "ladarsim/experiments/table1.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim::experiments {
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -40,9 +40,9 @@ const std::vector<PrintedTable1Row>& printed_table1() {
     return rows;
 }
 
-int rendered_point_count_at(const SensorConfig& sensor, std::shared_ptr<const scene::Model> target, double range_m,
-                            double az_rad, double el_rad, bool noise, std::uint64_t seed, std::uint64_t frame) {
-    Scenario s;
+int rendered_point_count_at(const sensor_model::SensorConfig& sensor, std::shared_ptr<const scene::Model> target,
+                            double range_m, double az_rad, double el_rad, bool noise, std::uint64_t seed, std::uint64_t frame) {
+    sensor_model::Scenario s;
     s.sensor = sensor;
     s.render.noise = noise;
     s.render.seed = seed;
@@ -58,20 +58,21 @@ int rendered_point_count_at(const SensorConfig& sensor, std::shared_ptr<const sc
     object.trajectory = scene::Trajectory::fixed(
         scene::Pose{position, scene::orientation_from_ypr_deg(180.0 + az_rad / kDeg, -el_rad / kDeg, 0.0)});
     s.scene.objects.push_back(object);
-    FrameRenderer renderer(s);
-    const Frame f = renderer.render(frame);
+    sensor_model::FrameRenderer renderer(s);
+    const sensor_model::Frame f = renderer.render(frame);
     return static_cast<int>(
-        std::count_if(f.returns.begin(), f.returns.end(), [](const Return& r) { return r.object_id == 1; }));
+        std::count_if(f.returns.begin(), f.returns.end(), [](const sensor_model::Return& r) { return r.object_id == 1; }));
 }
 
-CountStatistics rendered_point_count(const SensorConfig& sensor, std::shared_ptr<const scene::Model> target,
+CountStatistics rendered_point_count(const sensor_model::SensorConfig& sensor, std::shared_ptr<const scene::Model> target,
                                      double range_m, int frames, bool noise, std::uint64_t seed) {
     const double pitch_az = sensor.field_az_deg * kDeg / sensor.beams_az;
     const double pitch_el = sensor.field_el_deg * kDeg / sensor.beams_el;
     CountStatistics stats;
     for (int f = 0; f < frames; ++f) {
         // The sub-beam offset of this frame, from its own counter-based draw.
-        const auto u = uniform4(seed, RandomStream::footprint_jitter, static_cast<std::uint64_t>(f), 0xFFFFFFFFu, 0);
+        const auto u = sensor_model::uniform4(seed, sensor_model::RandomStream::footprint_jitter, static_cast<std::uint64_t>(f),
+                                              0xFFFFFFFFu, 0);
         stats.per_frame.push_back(rendered_point_count_at(sensor, target, range_m, (u[0] - 0.5) * pitch_az,
                                                           (u[1] - 0.5) * pitch_el, noise, seed, static_cast<std::uint64_t>(f)));
     }
@@ -89,7 +90,7 @@ CountStatistics rendered_point_count(const SensorConfig& sensor, std::shared_ptr
     return stats;
 }
 
-nlohmann::json table1_comparison(const SensorConfig& sensor, std::shared_ptr<const scene::Model> plate,
+nlohmann::json table1_comparison(const sensor_model::SensorConfig& sensor, std::shared_ptr<const scene::Model> plate,
                                  std::shared_ptr<const scene::Model> drone, int frames, std::uint64_t seed,
                                  const std::function<void(int, int)>& progress) {
     nlohmann::json rows = nlohmann::json::array();
@@ -159,4 +160,4 @@ std::string table1_markdown(const nlohmann::json& rows) {
     return md;
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim::experiments

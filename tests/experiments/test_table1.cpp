@@ -4,12 +4,13 @@
 
 #include <cmath>
 
+#include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/trajectory.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/target_point_counts.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
+using namespace ladarsim::experiments;
 using namespace ladarsim::sensor_model;
 
 TEST_CASE("Eqs. 4-8 with a 0.65 deg field reproduce Table 1's printed FOV_m, BL and TBI", "[table1]") {
