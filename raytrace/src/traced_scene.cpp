@@ -11,16 +11,11 @@
 
 #include <embree3/rtcore.h>
 
+#include "embree_common.h"
+#include "volume_boundaries.h"
+
 namespace ladarsim::raytrace {
 namespace {
-
-// Owning handles: Embree objects are reference counted C handles.
-struct DeviceDeleter { void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); } };
-struct SceneDeleter { void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); } };
-struct GeometryDeleter { void operator()(RTCGeometryTy* g) const { rtcReleaseGeometry(g); } };
-using Device = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
-using EmbreeScene = std::unique_ptr<RTCSceneTy, SceneDeleter>;
-using Geometry = std::unique_ptr<RTCGeometryTy, GeometryDeleter>;
 
 enum class GeometryKind { static_mesh, moving_instance, discs };
 
@@ -40,19 +35,6 @@ struct ModelBvh {
 
 using Matrix34 = Eigen::Matrix<double, 3, 4>;
 
-// Ray-triangle distance in double precision (Moller-Trumbore). Embree's float t carries a relative
-// error of a few 1e-7, i.e. millimetres at 2 km; the vertices it tested are exact floats, so
-// repeating the intersection in double recovers the range to well below a millimetre.
-std::optional<double> triangle_distance(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
-                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const Eigen::Vector3d e1 = b - a, e2 = c - a;
-    const Eigen::Vector3d p = d.cross(e2);
-    const double det = e1.dot(p);
-    if (std::abs(det) < 1e-300) return std::nullopt;
-    const Eigen::Vector3d s = o - a;
-    return e2.dot(s.cross(e1)) / det;
-}
-
 Matrix34 to_matrix(const float* column_major) {
     Matrix34 m;
     for (int c = 0; c < 4; ++c)
@@ -66,9 +48,7 @@ struct TracedScene::Impl {
     Eigen::Vector3d origin_world;
     Device device;
     EmbreeScene top;
-    EmbreeScene volumes;  // fog and cloud boundaries, traced only by volumes_along
-    std::vector<const scene::SceneObject*> volume_objects;  // by geometry id in `volumes`
-    std::vector<const float*> volume_vertices;
+    std::optional<VolumeBoundaries> volumes;  // fog and cloud, traced only by volumes_along
     std::vector<ModelBvh> models;
     std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene
     std::map<const scene::Model*, std::size_t> model_index;
@@ -128,10 +108,7 @@ struct TracedScene::Impl {
         // Dynamic: Embree then keeps one BVH per geometry and rebuilds only the instances that
         // move with each new time window, not the static terrain or the background map.
         rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
-        volumes.reset(rtcNewScene(device.get()));
-        // Watertight triangle tests: a ray must not slip through the edge between two boundary
-        // triangles and lose a crossing of a cloud. Volume boundaries are few: the care costs little.
-        rtcSetSceneFlags(volumes.get(), RTC_SCENE_FLAG_ROBUST);
+        volumes.emplace(device.get(), origin_world);
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
             add_bounds(object);
@@ -140,8 +117,7 @@ struct TracedScene::Impl {
             else add_moving_instance(object);
         }
         if (scene.background && !scene.background->points_world.empty()) add_discs(*scene.background);
-        rtcCommitScene(volumes.get());
-        find_volumes_holding_origin();
+        volumes->commit();
         check("building the scene");
         set_time_window(0.0, 0.0, 2);
     }
@@ -209,89 +185,7 @@ struct TracedScene::Impl {
     void add_volume(const scene::SceneObject& object) {
         float* vertices = nullptr;
         Geometry g = triangle_geometry(object.model->mesh, relative_from_model(object, 0.0), &vertices);
-        rtcSetGeometryIntersectFilterFunction(g.get(), &Impl::collect_crossing);
-        rtcCommitGeometry(g.get());
-        const unsigned id = rtcAttachGeometry(volumes.get(), g.get());
-        if (id != volume_objects.size()) throw std::logic_error("Embree geometry ids are not sequential");
-        volume_objects.push_back(&object);
-        volume_vertices.push_back(vertices);
-        volume_geometries.push_back(std::move(g));
-    }
-
-    std::vector<Geometry> volume_geometries;
-
-    // Every boundary a ray crosses, gathered in one traversal: the filter records each candidate
-    // hit and rejects it so that Embree goes on. (Stepping from hit to hit instead skips a second
-    // boundary at the same distance, e.g. where a ray grazes an edge, entering and leaving at once.)
-    struct Crossing {
-        std::uint32_t geometry;
-        std::uint32_t prim;
-    };
-    struct CrossingContext {
-        RTCIntersectContext context;  // first: Embree hands callbacks a pointer to it
-        std::vector<Crossing>* crossings;
-    };
-    static void collect_crossing(const RTCFilterFunctionNArguments* args) {
-        auto* context = reinterpret_cast<const CrossingContext*>(args->context);
-        for (unsigned i = 0; i < args->N; ++i) {
-            if (args->valid[i] != -1) continue;
-            context->crossings->push_back({RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i)});
-            args->valid[i] = 0;
-        }
-    }
-
-    struct Boundary {
-        double range_m;  // in double, from the triangle itself
-        bool entering;
-        std::uint32_t geometry, prim;
-    };
-    /// The volume boundaries along a ray (origin relative to origin_world), nearest first, into
-    /// `boundaries` (reused: this runs per sub-ray in beams that meet a medium).
-    void boundaries_along(const Eigen::Vector3d& o, const Ray& ray, std::vector<Boundary>& boundaries) const {
-        thread_local std::vector<Crossing> crossings;
-        crossings.clear();
-        CrossingContext context;
-        rtcInitIntersectContext(&context.context);
-        context.crossings = &crossings;
-        RTCRayHit rh;
-        to_embree(ray, rh);
-        rtcIntersect1(volumes.get(), &context.context, &rh);
-        boundaries.clear();
-        for (const Crossing& c : crossings) {
-            const auto& tri = volume_objects[c.geometry]->model->mesh.triangles[c.prim];
-            const float* v = volume_vertices[c.geometry];
-            Eigen::Vector3d corner[3];
-            for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(v[3 * tri[k]], v[3 * tri[k] + 1], v[3 * tri[k] + 2]);
-            const auto range = triangle_distance(o, ray.direction, corner[0], corner[1], corner[2]);
-            if (!range) continue;  // degenerate triangle
-            const Eigen::Vector3d normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
-            boundaries.push_back({std::max(*range, 0.0), normal.dot(ray.direction) < 0.0, c.geometry, c.prim});
-        }
-        std::sort(boundaries.begin(), boundaries.end(), [](const Boundary& a, const Boundary& b) { return a.range_m < b.range_m; });
-    }
-
-    // Whether the sensor (origin_world, where every beam starts) sits inside each volume, decided
-    // once by parity along three skew directions (a majority, in case one grazes an edge). Deciding
-    // it per ray from the order of its crossings fails on rays grazing a silhouette, where float
-    // vertices can sort the exit a few millimetres before the entry.
-    std::vector<bool> origin_inside;
-    void find_volumes_holding_origin() {
-        origin_inside.assign(volume_objects.size(), false);
-        if (volume_objects.empty()) return;
-        std::vector<int> votes(volume_objects.size(), 0);
-        std::vector<Boundary> boundaries;
-        for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.5377, 0.1834, 0.8229), Eigen::Vector3d(-0.3094, 0.9281, -0.2070),
-                                         Eigen::Vector3d(0.7071, -0.5000, -0.5000)}) {
-            Ray ray;
-            ray.origin_world = origin_world;
-            ray.direction = d.normalized();
-            ray.max_range_m = 1e7;
-            std::vector<int> parity(volume_objects.size(), 0);
-            boundaries_along(Eigen::Vector3d::Zero(), ray, boundaries);
-            for (const Boundary& b : boundaries) parity[b.geometry] ^= 1;
-            for (std::size_t g = 0; g < parity.size(); ++g) votes[g] += parity[g];
-        }
-        for (std::size_t g = 0; g < votes.size(); ++g) origin_inside[g] = votes[g] >= 2;
+        volumes->add(object, std::move(g), vertices);
     }
 
     void add_moving_instance(const scene::SceneObject& object) {
@@ -368,22 +262,7 @@ struct TracedScene::Impl {
         return static_cast<float>(std::clamp((time_s - window_begin_s) / window_length_s, 0.0, 1.0));
     }
 
-    void to_embree(const Ray& ray, RTCRayHit& rh) const {
-        rh = RTCRayHit{};
-        const Eigen::Vector3d o = ray.origin_world - origin_world;
-        rh.ray.org_x = static_cast<float>(o.x());
-        rh.ray.org_y = static_cast<float>(o.y());
-        rh.ray.org_z = static_cast<float>(o.z());
-        rh.ray.dir_x = static_cast<float>(ray.direction.x());
-        rh.ray.dir_y = static_cast<float>(ray.direction.y());
-        rh.ray.dir_z = static_cast<float>(ray.direction.z());
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = static_cast<float>(ray.max_range_m);
-        rh.ray.time = embree_time(ray.time_s);
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    }
+    void to_embree(const Ray& ray, RTCRayHit& rh) const { raytrace::to_embree(ray, origin_world, embree_time(ray.time_s), rh); }
 
     std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
@@ -448,43 +327,10 @@ struct TracedScene::Impl {
 };
 
 std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
-    std::vector<VolumeSegment> segments;
-    if (impl_->volume_objects.empty()) return segments;
-    const Eigen::Vector3d o = ray.origin_world - impl_->origin_world;
-    auto close = [&](std::uint32_t geometry, double enter_m, double exit_m, std::uint32_t prim) {
-        const scene::SceneObject& object = *impl_->volume_objects[geometry];
-        const scene::Material& m = object.model->materials[object.model->mesh.triangle_material[prim]];
-        segments.push_back({object.id, enter_m, exit_m, m.extinction_per_m, m.backscatter_per_m_sr});
-    };
-    struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
-    std::vector<Open> open;
-    const bool from_sensor = o.squaredNorm() < 1e-12;
-    thread_local std::vector<Impl::Boundary> boundaries;
-    impl_->boundaries_along(o, ray, boundaries);
-    std::vector<std::uint32_t> met;  // volumes whose boundary this ray has crossed already
-    for (std::uint32_t g = 0; g < impl_->volume_objects.size(); ++g)
-        if (from_sensor && impl_->origin_inside[g]) open.push_back({g, 0.0, 0});
-    for (const Impl::Boundary& b : boundaries) {
-        const auto it = std::find_if(open.begin(), open.end(), [&](const Open& x) { return x.geometry == b.geometry; });
-        const bool first = std::find(met.begin(), met.end(), b.geometry) == met.end();
-        if (first) met.push_back(b.geometry);
-        if (b.entering) {
-            if (it == open.end()) open.push_back({b.geometry, b.range_m, b.prim});
-        } else if (it != open.end()) {
-            close(b.geometry, it->enter_m, b.range_m, b.prim);
-            open.erase(it);
-        } else if (first && !from_sensor) {
-            close(b.geometry, 0.0, b.range_m, b.prim);  // a ray from elsewhere, starting inside
-        }
-        // else: a grazing ray's exit sorted before its entry, or one exit reported by both
-        // triangles of an edge
-    }
-    for (const Open& x : open) close(x.geometry, x.enter_m, ray.max_range_m, x.prim);
-    std::sort(segments.begin(), segments.end(), [](const VolumeSegment& a, const VolumeSegment& b) { return a.enter_m < b.enter_m; });
-    return segments;
+    return impl_->volumes->along(ray, impl_->embree_time(ray.time_s));
 }
 
-bool TracedScene::has_volumes() const { return !impl_->volume_objects.empty(); }
+bool TracedScene::has_volumes() const { return !impl_->volumes->empty(); }
 
 void TracedScene::object_bounds(double time_s, std::vector<ObjectBounds>& out) const {
     out.clear();

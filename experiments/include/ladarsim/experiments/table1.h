@@ -1,6 +1,7 @@
 #pragma once
-// How many returns a small target gives: the paper's analytic Table 1 (its Eqs. 4-8) and the
-// same count rendered by ray tracing the beam pattern with the received-signal model.
+// The paper's Table 1, an experiment on the sensor model: how many returns a small target gives, by
+// the paper's analytic Eqs. 4-8 and rendered by ray tracing the beam pattern with the received-signal
+// model (`ladarsim table1`, docs/table1.md).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -12,7 +13,7 @@
 #include "ladarsim/scene/mesh.h"
 #include "ladarsim/sensor_model/sensor.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim::experiments {
 
 /// One row of the paper's Table 1 as its Eqs. 4-8 give it.
 struct AnalyticPointCount {
@@ -51,7 +52,7 @@ struct CountStatistics {
 /// Returns the detector reports on a lone target (no background, clear air) at `range_m`, its
 /// centre `az_rad` / `el_rad` off the field centre, facing the sensor; `frame` keys the noise.
 /// `footprint_samples` as in RenderSettings (0: adaptive footprints).
-int rendered_point_count_at(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
+int rendered_point_count_at(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
                             double range_m, double az_rad, double el_rad, bool noise, std::uint64_t seed,
                             std::uint64_t frame);
 
@@ -59,17 +60,17 @@ int rendered_point_count_at(const Sensor& sensor, int footprint_samples, std::sh
 /// field at `range_m`, facing the sensor, moved by a random sub-beam offset (uniform over one
 /// beam pitch in azimuth and elevation) in each frame; counts the returns the detector reports
 /// on it. Deterministic for a seed.
-CountStatistics rendered_point_count(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
+CountStatistics rendered_point_count(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
                                      double range_m, int frames, bool noise, std::uint64_t seed);
 
 /// Table 1 side by side: for each printed range, the paper's row, Eqs. 4-8 under the stated 0.5 deg
 /// field and the 0.65 deg reading, and the rendered counts (mean, stddev, min, max) for the plate
 /// and the drone with noise on and off. `progress` is called after each range.
-nlohmann::json table1_comparison(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> plate,
+nlohmann::json table1_comparison(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> plate,
                                  std::shared_ptr<const scene::Model> drone, int frames, std::uint64_t seed,
                                  const std::function<void(int done, int total)>& progress = {});
 
 /// The comparison as a markdown table a person reads at a glance.
 std::string table1_markdown(const nlohmann::json& rows);
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim::experiments

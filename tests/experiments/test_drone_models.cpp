@@ -2,11 +2,12 @@
 // rendered returns at 200 m and 1 km.
 #include <catch2/catch.hpp>
 
+#include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/gltf_loader.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/target_point_counts.h"
 
 using namespace ladarsim;
+using namespace ladarsim::experiments;
 using namespace ladarsim::sensor_model;
 
 TEST_CASE("procedural and real quadcopters of one span return alike at 200 m and 1 km", "[drone_models]") {

@@ -4,13 +4,14 @@
 
 #include <cmath>
 
+#include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/trajectory.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/target_point_counts.h"
 #include "../support/sensors.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
+using namespace ladarsim::experiments;
 using namespace ladarsim::sensor_model;
 using namespace ladarsim::test;
 

@@ -1,4 +1,4 @@
-#include "ladarsim/sensor_model/target_point_counts.h"
+#include "ladarsim/experiments/table1.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim::experiments {
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -40,10 +40,10 @@ const std::vector<PrintedTable1Row>& printed_table1() {
     return rows;
 }
 
-int rendered_point_count_at(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
+int rendered_point_count_at(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
                             double range_m, double az_rad, double el_rad, bool noise, std::uint64_t seed,
                             std::uint64_t frame) {
-    Scenario s;
+    sensor_model::Scenario s;
     s.sensor = sensor;
     s.render.footprint_samples = footprint_samples;
     s.render.noise = noise;
@@ -60,21 +60,21 @@ int rendered_point_count_at(const Sensor& sensor, int footprint_samples, std::sh
     object.trajectory = scene::Trajectory::fixed(
         scene::Pose{position, scene::orientation_from_ypr_deg(180.0 + az_rad / kDeg, -el_rad / kDeg, 0.0)});
     s.scene.objects.push_back(object);
-    FrameRenderer renderer(s);
-    const Frame f = renderer.render(frame);
+    sensor_model::FrameRenderer renderer(s);
+    const sensor_model::Frame f = renderer.render(frame);
     return static_cast<int>(
-        std::count_if(f.returns.begin(), f.returns.end(), [](const Return& r) { return r.object_id == 1; }));
+        std::count_if(f.returns.begin(), f.returns.end(), [](const sensor_model::Return& r) { return r.object_id == 1; }));
 }
 
-CountStatistics rendered_point_count(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
+CountStatistics rendered_point_count(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
                                      double range_m, int frames, bool noise, std::uint64_t seed) {
-    const ScanPattern& scan = *sensor.scan;
+    const sensor_model::ScanPattern& scan = *sensor.scan;
     const double pitch_az = scan.field_az_deg() * kDeg / scan.columns();
     const double pitch_el = scan.field_el_deg() * kDeg / scan.rows();
     CountStatistics stats;
     for (int f = 0; f < frames; ++f) {
         // The sub-beam offset of this frame, from its own counter-based draw.
-        const auto u = uniform4(seed, RandomStream::footprint_jitter, static_cast<std::uint64_t>(f), 0xFFFFFFFFu, 0);
+        const auto u = sensor_model::uniform4(seed, sensor_model::RandomStream::footprint_jitter, static_cast<std::uint64_t>(f), 0xFFFFFFFFu, 0);
         stats.per_frame.push_back(rendered_point_count_at(sensor, footprint_samples, target, range_m, (u[0] - 0.5) * pitch_az,
                                                           (u[1] - 0.5) * pitch_el, noise, seed, static_cast<std::uint64_t>(f)));
     }
@@ -92,13 +92,13 @@ CountStatistics rendered_point_count(const Sensor& sensor, int footprint_samples
     return stats;
 }
 
-nlohmann::json table1_comparison(const Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> plate,
+nlohmann::json table1_comparison(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> plate,
                                  std::shared_ptr<const scene::Model> drone, int frames, std::uint64_t seed,
                                  const std::function<void(int, int)>& progress) {
     nlohmann::json rows = nlohmann::json::array();
     const auto& printed = printed_table1();
     const double target_m = 0.3;
-    const ScanPattern& scan = *sensor.scan;
+    const sensor_model::ScanPattern& scan = *sensor.scan;
     int done = 0;
     for (const PrintedTable1Row& paper : printed) {
         const double r = paper.range_m;
@@ -164,4 +164,4 @@ std::string table1_markdown(const nlohmann::json& rows) {
     return md;
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim::experiments

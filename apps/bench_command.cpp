@@ -1,0 +1,73 @@
+// `ladarsim bench`: speed against accuracy (ladarsim_bench), summarised on stdout and written as JSON.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "command.h"
+#include "ladarsim/bench/benchmarks.h"
+#include "ladarsim/sensor_model/json_file.h"
+
+namespace ladarsim::apps {
+namespace {
+
+struct BenchCommand {
+    bench::BenchOptions bench_options;
+    std::string bench_json;
+
+    CLI::App* add(CLI::App& app) {
+        auto* bench_cmd = app.add_subcommand(
+            "bench", "Measure speed against accuracy: our render against raw Embree on the same rays, the real-time factor "
+                     "of the default scenario at each accuracy, beams/s against point-count/energy/range error for a drone "
+                     "at 200, 1000, 2000 m, and scaling with beams, triangles and map points (plot: scripts/plot_bench.py)");
+        bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about a minute)");
+        bench_cmd->add_option("--json", bench_json, "Write every figure to this JSON file");
+        bench_cmd->add_option("--scenario", bench_options.scenario, "Scenario to time")->check(CLI::ExistingFile)->capture_default_str();
+        bench_cmd->add_option("--map-scenario", bench_options.map_scenario,
+                              "Scenario over a recorded map, for speed against error there (skipped if it cannot load)")
+            ->capture_default_str();
+        return bench_cmd;
+    }
+
+    int run() {
+        const auto start = std::chrono::steady_clock::now();
+        bench_options.progress = [start](const std::string& step) {
+            std::fprintf(stderr, "[%5.0f s] %s\n",
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), step.c_str());
+        };
+        const nlohmann::json result = bench::run_benchmarks(bench_options);
+        std::printf("pipeline vs raw Embree (rays/s, same rays): %.2f\n", result["pipeline_vs_raw_embree"].get<double>());
+        std::printf("real-time factor (default accuracy, vs %.0f beams/s): %.1f\n", bench::sensor_beams_per_second(),
+                    result["realtime_factor"].get<double>());
+        std::printf("target point-count error vs converged reference: %+.2f %%\n", result["count_error_pct"].get<double>());
+        const nlohmann::json& map = result["recorded_map"];
+        if (map.contains("skipped")) {
+            std::printf("over a recorded map: skipped (%s)\n", map["skipped"].get<std::string>().c_str());
+        } else {
+            for (const nlohmann::json& m : map["settings"]) {
+                if (m["footprint_samples"] != 0) continue;
+                std::printf("over a recorded map, tolerance %.2f: %.0f rays/beam, real-time factor %.1f, map returns %+.1f %%, "
+                            "map intensity %+.1f %%\n",
+                            m["footprint_tolerance"].get<double>(), m["rays_per_beam"].get<double>(),
+                            m["realtime_factor"].get<double>(), m["map_count_error_pct"].get<double>(),
+                            m["map_energy_error_pct"].get<double>());
+            }
+        }
+        if (!bench_json.empty()) {
+            sensor_model::write_json(bench_json, result);
+            std::printf("wrote %s\n", bench_json.c_str());
+        } else {
+            std::cout << result.dump(2) << "\n";
+        }
+        return 0;
+    }
+};
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+    add_command(app, std::make_shared<BenchCommand>(), exit_code);
+}
+
+}  // namespace ladarsim::apps

@@ -1,0 +1,67 @@
+// `ladarsim eval`: detections scored against the ground truth (L2, IoU, EAO).
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "plot_script.h"
+#include "ladarsim/detect/expected_overlap.h"
+#include "ladarsim/detect/sequence.h"
+#include "ladarsim/scene/input_error.h"
+#include "ladarsim/sensor_model/json_file.h"
+
+namespace ladarsim::apps {
+namespace {
+
+struct EvalCommand {
+    std::string dataset_dir, detections_file, eval_json, eval_plot;
+
+    CLI::App* add(CLI::App& app) {
+        auto* eval_cmd = app.add_subcommand("eval", "Score detections against the ground truth: L2, IoU, EAO");
+        eval_cmd->add_option("dir", dataset_dir, "Dataset directory")->required();
+        eval_cmd->add_option("--detections", detections_file, "Detections JSON written by `ladarsim detect`")->required();
+        eval_cmd->add_option("--json", eval_json, "Write the scores (mean_l2_m, mean_iou, eao, frames, failures, per frame)");
+        eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
+        return eval_cmd;
+    }
+
+    int run() {
+        const detect::Sequence sequence = detect::load_sequence(dataset_dir);
+        const nlohmann::json in = sensor_model::read_json(detections_file);
+        if (!in.contains("supervised") || !in.contains("target"))
+            throw InputError(detections_file, "supervised", "missing: the dataset had no ground truth when detect ran");
+        std::vector<detect::Detection> detections;
+        for (const auto& j : in.at("detections")) detections.push_back(detect::detection_from_json(j));
+        detect::SupervisedRun run;
+        run.iou = in["supervised"]["iou"].get<std::vector<double>>();
+        run.initialised = in["supervised"]["initialised"].get<std::vector<bool>>();
+        run.failures = in["supervised"]["failures"].get<int>();
+        const auto interval = detect::vot_length_interval({static_cast<int>(detections.size())});
+        nlohmann::json scores = detect::evaluate(sequence, detections, run, in["target"].get<std::uint32_t>(), interval);
+        scores["method"] = in.value("method", "");
+        std::printf("%s: %zu frames, mean L2 %.3f m, mean IoU %.3f, EAO %.3f over lengths %d-%d, %d failures, %d frames lost\n",
+                    scores["method"].get<std::string>().c_str(), detections.size(),
+                    scores["mean_l2_m"].is_null() ? NAN : scores["mean_l2_m"].get<double>(), scores["mean_iou"].get<double>(),
+                    scores["eao"].get<double>(), interval.first, interval.second, scores["failures"].get<int>(),
+                    scores["frames_lost"].get<int>());
+        const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
+        if (!json_path.empty()) sensor_model::write_json(json_path, scores);
+        if (!eval_plot.empty()) {
+            run_plot_script("plot_eval.py", json_path, eval_plot);
+            if (eval_json.empty()) std::filesystem::remove(json_path);
+        }
+        return 0;
+    }
+};
+
+}  // namespace
+
+void add_eval_command(CLI::App& app, int& exit_code) {
+    add_command(app, std::make_shared<EvalCommand>(), exit_code);
+}
+
+}  // namespace ladarsim::apps

@@ -1,0 +1,121 @@
+// `ladarsim render`: scenario files into dataset directories; under mpirun the ranks share the frames.
+#include <algorithm>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+
+#include "command.h"
+#include "stop_signal.h"
+#include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/sensor_model/scenario.h"
+
+namespace ladarsim::apps {
+namespace {
+
+void print_summary(const sensor_model::Scenario& scenario, const sensor_model::DatasetSummary& s) {
+    std::printf("rendered %d frames of %s in %.2f s (%.0f beams/s, %.1fx the sensor's real time)\n", s.frames,
+                scenario.file.string().c_str(), s.render_seconds, s.beams_per_second,
+                s.beams_per_second / scenario.sensor.beams_per_second());
+    std::printf("returns: %llu in all\n", static_cast<unsigned long long>(s.returns));
+    for (const auto& [id, count] : s.returns_by_object) {
+        std::string label = id == 0                       ? "background map"
+                            : id == sensor_model::kNoObject ? "false alarms (detector noise)"
+                                                            : "object " + std::to_string(id);
+        for (const auto& o : scenario.scene.objects) {
+            if (o.id == id) label += " (" + std::string(scene::to_string(o.object_class)) + (o.name.empty() ? "" : " " + o.name) + ")";
+        }
+        std::printf("  %-40s %10llu returns, %.1f per frame\n", label.c_str(), static_cast<unsigned long long>(count),
+                    double(count) / s.frames);
+    }
+    std::printf("wrote %s/frames/NNNNNN.pcd (point clouds: PCL, CloudCompare), frames/NNNNNN.exr (range images),\n"
+                "      ground_truth.json, manifest.json%s\n",
+                s.out_dir.string().c_str(),
+                s.background_points ? (" and background.pcd (" + std::to_string(s.background_points) +
+                                       " points of the static scene)").c_str() : "");
+}
+
+struct RenderCommand {
+    const std::unique_ptr<MpiTeam>& team;
+    std::string out_dir;
+    std::vector<std::string> scenario_files;
+    int frames = 0, threads = 0, fail_at_frame = -1;
+    std::uint64_t seed = 0;
+    bool quiet = false;
+    bool resume = false;
+    CLI::App* render = nullptr;
+
+    explicit RenderCommand(const std::unique_ptr<MpiTeam>& team) : team(team) {}
+
+    CLI::App* add(CLI::App& app) {
+        render = app.add_subcommand(
+            "render", "Render a scenario into a dataset directory. Under mpirun the frames are shared among the ranks\n"
+                      "(mpirun -n N ladarsim render ...), with output identical to one process");
+        render->add_option("scenario", scenario_files, "Scenario file(s) (JSON, see docs/scenario.md)")->required();
+        render->add_option("--out", out_dir,
+                           "Output directory (created; an earlier dataset there is replaced); with several scenarios, "
+                           "one directory per scenario inside it, named after the file")
+            ->required();
+        render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")->check(CLI::PositiveNumber);
+        render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)");
+        render->add_option("--threads", threads, "Worker threads (default: all cores); output does not depend on it")
+            ->check(CLI::NonNegativeNumber);
+        render->add_flag("--quiet", quiet, "No progress output");
+        render->add_flag("--resume", resume,
+                         "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
+        render->add_option("--fail-at-frame", fail_at_frame, "For testing: make this frame fail");
+        return render;
+    }
+
+    int run() {
+        if (quiet || (team && team->rank() != 0)) spdlog::set_level(spdlog::level::warn);
+        const bool speaking = !team || team->rank() == 0;
+        for (const std::string& file : scenario_files) {
+            const sensor_model::Scenario scenario = sensor_model::load_scenario(file);
+            sensor_model::DatasetOptions options;
+            options.out_dir = scenario_files.size() == 1 ? std::filesystem::path(out_dir)
+                                                         : std::filesystem::path(out_dir) / std::filesystem::path(file).stem();
+            if (render->count("--frames")) options.frames = frames;
+            if (render->count("--seed")) options.seed = seed;
+            // The ranks on one machine share its cores.
+            options.threads = threads > 0 || !team
+                                  ? threads
+                                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / team->local_size());
+            options.resume = resume;
+            options.stop = &g_stop;
+            options.team = team.get();
+            options.fail_at_frame = fail_at_frame;
+            std::signal(SIGINT, request_stop);
+            std::signal(SIGTERM, request_stop);
+            if (!quiet && speaking) {
+                options.progress = [](int done, int total) {
+                    std::fprintf(stderr, "\rframe %d/%d", done, total);
+                    if (done == total) std::fprintf(stderr, "\n");
+                };
+            }
+            const auto summary = sensor_model::render_dataset(scenario, options);
+            if (summary.interrupted) {
+                if (speaking)
+                    std::fprintf(stderr, "\ninterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
+                                 summary.frames, summary.out_dir.string().c_str());
+                return 130;
+            }
+            if (speaking) print_summary(scenario, summary);
+        }
+        return 0;
+    }
+};
+
+}  // namespace
+
+void add_render_command(CLI::App& app, int& exit_code, const std::unique_ptr<MpiTeam>& team) {
+    add_command(app, std::make_shared<RenderCommand>(team), exit_code);
+}
+
+}  // namespace ladarsim::apps
