@@ -1,9 +1,13 @@
-// `ladarsim sensor show`: a sensor preset and its derived quantities as JSON.
+// `ladarsim sensor show`: a bundled sensor and its derived quantities as JSON;
+// `ladarsim sensor from-ouster`: a sensor file made from an Ouster unit's own metadata.
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "command.h"
+#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/sensor_model/ouster_pcap.h"
 #include "ladarsim/sensor_model/sensor.h"
 
 namespace ladarsim::apps {
@@ -11,17 +15,34 @@ namespace {
 
 struct SensorCommand {
     std::string preset = "paper_ladar";
+    std::string metadata_file, out_file;
+    CLI::App* show = nullptr;
 
     CLI::App* add(CLI::App& app) {
-        auto* sensor = app.add_subcommand("sensor", "Sensor presets");
+        auto* sensor = app.add_subcommand("sensor", "Sensors: the bundled presets, and sensor files made from calibrations");
         sensor->require_subcommand(1);
-        auto* show = sensor->add_subcommand("show", "Print a preset's parameters and derived quantities as JSON");
-        show->add_option("--preset", preset, "Preset name")->check(CLI::IsMember(sensor_model::sensor_presets()));
-        return show;
+        show = sensor->add_subcommand("show", "Print a preset's parameters and derived quantities as JSON");
+        show->add_option("--preset", preset, "Preset name")->check(CLI::IsMember(sensor_model::sensor_presets()))->capture_default_str();
+        auto* ouster = sensor->add_subcommand(
+            "from-ouster", "Write the sensor file of an Ouster unit from its metadata (calibration) JSON alone");
+        ouster->add_option("metadata", metadata_file, "The unit's metadata file (beam angles, lidar mode, ...)")->required();
+        ouster->add_option("--out", out_file, "Sensor file to write (default: print it)");
+        return sensor;
     }
 
     int run() {
-        std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
+        if (show->parsed()) {
+            std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
+            return 0;
+        }
+        const nlohmann::json sensor = sensor_model::ouster_sensor_json(sensor_model::read_ouster_metadata(metadata_file));
+        if (out_file.empty()) {
+            std::cout << sensor.dump(2) << "\n";
+        } else {
+            sensor_model::write_json(out_file, sensor);
+            std::printf("wrote %s (sensor \"%s\"; name it in a scenario as \"sensor\": {\"file\": ...})\n", out_file.c_str(),
+                        sensor.at("name").get<std::string>().c_str());
+        }
         return 0;
     }
 };

@@ -274,7 +274,11 @@ nlohmann::json ouster_sensor_json(const OusterCalibration& c) {
     std::string name = "ouster_" + c.product_line;
     std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
 
-    const double pulse_rate_hz = c.pixels_per_column * c.columns_per_frame * c.frame_rate_hz;  // one pulse per pixel
+    // Every channel has its own emitter, firing once a column: a beam sees one pulse.
+    const double pulse_rate_hz = c.columns_per_frame * c.frame_rate_hz;
+    // The datasheets' false positive rate, one point in 10,000 pixels, as noise crossings per
+    // second of listening: each pixel listens for the time of flight to the unit's range.
+    const double false_alarm_rate_hz = 1e-4 / (2.0 * line.max_range_m / kSpeedOfLight_mps);
     // Gaussian beam: full angle at 1/e^2 irradiance = FWHM x 2 / sqrt(2 ln 2).
     const double divergence_mrad = line.divergence_fwhm_deg * kRadPerDeg * 1e3 * 2.0 / std::sqrt(2.0 * std::numbers::ln2);
     // Ouster publishes no radiometry. What follows are estimates for an 865 nm VCSEL emitter and a
@@ -313,15 +317,14 @@ nlohmann::json ouster_sensor_json(const OusterCalibration& c) {
           {"load_resistance_ohm", 10e3},
           {"temperature_k", 300.0},
           {"saturation_current_a", 2e-3},
-          // The datasheets' false positive rate: one point in 10,000.
-          {"false_alarm_rate_hz", 1e-4 * pulse_rate_hz},
+          {"false_alarm_rate_hz", false_alarm_rate_hz},
           {"max_range_m", line.max_range_m},
           {"range_folding", false},
           // Surfaces closer along a beam than half a pulse length make one echo.
           {"return_gap_m", kSpeedOfLight_mps * pulse_width_ns * 1e-9 / 2.0},
           // The datasheets: one return per pixel, the strongest.
           {"reported_returns", "strongest"}}},
-        {"gimbal", {{"az_limit_deg", 0.0}, {"el_min_deg", -1e-9}, {"el_max_deg", 0.0}, {"slew_rate_dps", 0.0}}},
+        {"gimbal", {{"az_limit_deg", 0.0}, {"el_min_deg", 0.0}, {"el_max_deg", 0.0}, {"slew_rate_dps", 0.0}}},
     };
 }
 

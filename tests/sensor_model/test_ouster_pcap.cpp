@@ -16,6 +16,7 @@
 #include "ladarsim/scene/input_error.h"
 #include "ladarsim/sensor_model/json_file.h"
 #include "ladarsim/sensor_model/ouster_pcap.h"
+#include "ladarsim/sensor_model/sensor.h"
 #include "../support/pcap_writer.h"
 #include "../support/rerender_recorded.h"
 #include "../support/scratch_dir.h"
@@ -228,7 +229,9 @@ TEST_CASE("the Ouster unit as a sensor document points every column and channel 
         CHECK(std::abs(std::remainder(first, 360.0)) == Approx(180.0));
         CHECK(doc.at("scan").at("frame_rate_hz") == 10.0);
         CHECK(doc.at("transmitter").at("wavelength_nm") == 865.0);
-        CHECK(doc.at("transmitter").at("pulse_rate_hz") == Approx(cal.pixels_per_column * 1024 * 10));
+        // Each channel's emitter fires once a column: one pulse a beam, 1024 x 10 a second.
+        CHECK(doc.at("transmitter").at("pulse_rate_hz") == Approx(1024 * 10));
+        CHECK(read_sensor(doc, u.stem).pulses_per_beam() == Approx(1.0));
         CHECK(doc.at("receiver").at("max_range_m") == u.spec_range_m);
         CHECK(doc.at("receiver").at("reported_returns") == "strongest");
         const std::string description = doc.at("description");
