@@ -21,14 +21,14 @@
 #include "viewer_server.h"
 #include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/dataset.h"
-#include "ladarsim/sensor_model/atomic_file.h"
-#include "ladarsim/sensor_model/frame.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/sensor_model/render_dataset.h"
+#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/dataset/frame.h"
+#include "ladarsim/dataset/json_file.h"
 #include "ladarsim/sensor_model/target_point_counts.h"
-#include "ladarsim/sensor_model/velodyne_pcap.h"
+#include "ladarsim/dataset/velodyne_pcap.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sensor_config.h"
 
@@ -42,9 +42,9 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                 s.beams_per_second / scenario.sensor.beams_per_second());
     std::printf("returns: %llu in all\n", static_cast<unsigned long long>(s.returns));
     for (const auto& [id, count] : s.returns_by_object) {
-        std::string label = id == 0                       ? "background map"
-                            : id == sensor_model::kNoObject ? "false alarms (detector noise)"
-                                                            : "object " + std::to_string(id);
+        std::string label = id == 0           ? "background map"
+                            : id == kNoObject ? "false alarms (detector noise)"
+                                              : "object " + std::to_string(id);
         for (const auto& o : scenario.scene.objects) {
             if (o.id == id) label += " (" + std::string(scene::to_string(o.object_class)) + (o.name.empty() ? "" : " " + o.name) + ")";
         }
@@ -246,7 +246,7 @@ int main(int argc, char** argv) {
                 }
             }
             if (!bench_json.empty()) {
-                sensor_model::write_json(bench_json, result);
+                write_json(bench_json, result);
                 std::printf("wrote %s\n", bench_json.c_str());
             } else {
                 std::cout << result.dump(2) << "\n";
@@ -264,16 +264,16 @@ int main(int argc, char** argv) {
                 [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
             const std::string markdown = sensor_model::table1_markdown(rows);
             std::cout << markdown;
-            if (!table_json.empty()) sensor_model::write_json(table_json, rows);
+            if (!table_json.empty()) write_json(table_json, rows);
             if (!table_markdown.empty()) {
-                sensor_model::AtomicFile out(table_markdown);
+                AtomicFile out(table_markdown);
                 out.stream() << markdown;
                 out.commit();
             }
             if (!table_plot.empty()) {
                 // The plot reads the numbers back from JSON, so it always shows what was written.
                 const std::string json_for_plot = table_json.empty() ? table_plot + ".json" : table_json;
-                if (table_json.empty()) sensor_model::write_json(json_for_plot, rows);
+                if (table_json.empty()) write_json(json_for_plot, rows);
                 const std::string command = "/usr/bin/python3 '" LADARSIM_SOURCE_DIR "/scripts/plot_table1.py' '" +
                                             json_for_plot + "' '" + table_plot + "'";
                 if (std::system(command.c_str()) != 0) throw std::runtime_error("the plot script failed: " + command);
@@ -305,12 +305,12 @@ int main(int argc, char** argv) {
                 out["supervised"] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
             }
             if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + method_name + ".json")).string();
-            sensor_model::write_json(detections_file, out);
+            write_json(detections_file, out);
             std::printf("%s over %zu frames: %d detected, %d predicted, %zu without a box; wrote %s\n", method_name.c_str(),
                         detections.size(), found, predicted, detections.size() - found - predicted, detections_file.c_str());
         } else if (*eval_cmd) {
             const detect::Sequence sequence = detect::load_sequence(dataset_dir);
-            const nlohmann::json in = sensor_model::read_json(detections_file);
+            const nlohmann::json in = read_json(detections_file);
             if (!in.contains("supervised") || !in.contains("target"))
                 throw InputError(detections_file, "supervised", "missing: the dataset had no ground truth when detect ran");
             std::vector<detect::Detection> detections;
@@ -328,7 +328,7 @@ int main(int argc, char** argv) {
                         scores["eao"].get<double>(), interval.first, interval.second, scores["failures"].get<int>(),
                         scores["frames_lost"].get<int>());
             const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
-            if (!json_path.empty()) sensor_model::write_json(json_path, scores);
+            if (!json_path.empty()) write_json(json_path, scores);
             if (!eval_plot.empty()) {
                 const std::string command = "/usr/bin/python3 '" LADARSIM_SOURCE_DIR "/scripts/plot_eval.py' '" + json_path +
                                             "' '" + eval_plot + "'";
@@ -336,7 +336,7 @@ int main(int argc, char** argv) {
                 if (eval_json.empty()) std::filesystem::remove(json_path);
             }
         } else if (*import_cmd) {
-            const auto frames = sensor_model::read_velodyne_vlp16_pcap(pcap_file);
+            const auto frames = read_velodyne_vlp16_pcap(pcap_file);
             sensor_model::write_recorded_dataset(frames, out_dir, pcap_file);
             std::size_t returns = 0;
             for (const auto& f : frames) returns += f.returns.size();

@@ -94,13 +94,13 @@ std::optional<Eigen::Vector3d> TargetTracker::fir_prediction(double time_s) cons
     return mean_c + velocity * (time_s - mean_t);
 }
 
-void TargetTracker::remember(double time_s, const sensor_model::OrientedBox& box) {
+void TargetTracker::remember(double time_s, const OrientedBox& box) {
     history_.emplace_back(time_s, box.centre);
     while (static_cast<int>(history_.size()) > config_.history) history_.pop_front();
     last_size_ = box.size;
 }
 
-void TargetTracker::reset(std::uint64_t, double time_s, const sensor_model::OrientedBox& truth) {
+void TargetTracker::reset(std::uint64_t, double time_s, const OrientedBox& truth) {
     history_.clear();
     remember(time_s, truth);
     kalman_->start(time_s, truth.centre);

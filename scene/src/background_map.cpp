@@ -23,7 +23,7 @@
 #include <pcl/point_types.h>
 #include <spdlog/spdlog.h>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/las_file.h"
 
 namespace ladarsim::scene {

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 
 namespace ladarsim::sensor_model {

@@ -3,8 +3,8 @@
 
 #include <fstream>
 
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/scene/input_error.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/background_map.h"
-#include "ladarsim/scene/input_error.h"
 
 using namespace ladarsim::scene;
 using ladarsim::InputError;

@@ -9,7 +9,7 @@ namespace ladarsim::detect {
 
 struct Cluster {
     Points points;
-    sensor_model::OrientedBox box;  ///< axis-aligned in the sensor frame
+    OrientedBox box;  ///< axis-aligned in the sensor frame
 };
 
 /// RBNN (Klasing et al. 2008): points closer than `radius_m` are linked; clusters are the

@@ -58,7 +58,7 @@ struct Detection {
     double time_s = 0.0;
     bool found = false;       ///< a box (from a cluster or a prediction)
     bool predicted = false;   ///< from the history, no cluster accepted
-    sensor_model::OrientedBox box;
+    OrientedBox box;
     std::size_t points = 0;   ///< in the accepted cluster
     double radius_m = 0.0;    ///< clustering radius used
 };
@@ -73,12 +73,12 @@ public:
     Detection process(std::uint64_t frame, double time_s, const Points& points,
                       const std::optional<Eigen::Vector3d>& boresight = std::nullopt);
     /// Re-initialises the history on a known box (VOT's reset after a failure).
-    void reset(std::uint64_t frame, double time_s, const sensor_model::OrientedBox& truth);
+    void reset(std::uint64_t frame, double time_s, const OrientedBox& truth);
 
 private:
     struct Kalman;
     std::optional<Eigen::Vector3d> fir_prediction(double time_s) const;
-    void remember(double time_s, const sensor_model::OrientedBox& box);
+    void remember(double time_s, const OrientedBox& box);
 
     DetectorConfig config_;
     BackgroundSubtractor background_;

@@ -1,9 +1,9 @@
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/json_fields.h"
 
 #include <cmath>
 #include <limits>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 
 namespace ladarsim {
 

@@ -1,9 +1,9 @@
 // frame_file_stem: six-digit, zero-padded names that sort in frame order.
 #include <catch2/catch.hpp>
 
-#include "ladarsim/sensor_model/frame_io.h"
+#include "ladarsim/dataset/frame_io.h"
 
-using ladarsim::sensor_model::frame_file_stem;
+using ladarsim::frame_file_stem;
 
 TEST_CASE("frame file stems are six digits, zero-padded", "[frame_io]") {
     CHECK(frame_file_stem(0) == "000000");

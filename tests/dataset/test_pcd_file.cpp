@@ -16,12 +16,11 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/pcd_file.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/pcd_file.h"
 #include "../support/scratch_dir.h"
 
-using namespace ladarsim::sensor_model;
-using ladarsim::InputError;
+using namespace ladarsim;
 using ladarsim::test::ScratchDir;
 
 namespace {

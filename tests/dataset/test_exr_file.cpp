@@ -17,12 +17,11 @@
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/exr_file.h"
+#include "ladarsim/dataset/exr_file.h"
+#include "ladarsim/dataset/input_error.h"
 #include "../support/scratch_dir.h"
 
-using namespace ladarsim::sensor_model;
-using ladarsim::InputError;
+using namespace ladarsim;
 using ladarsim::test::ScratchDir;
 
 namespace {

@@ -1,8 +1,8 @@
-#include "ladarsim/sensor_model/frame_io.h"
+#include "ladarsim/dataset/frame_io.h"
 
 #include <cstdio>
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 std::string frame_file_stem(std::uint64_t index) {
     char stem[24];
@@ -10,4 +10,4 @@ std::string frame_file_stem(std::uint64_t index) {
     return stem;
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 /// object_id of a pixel whose beam has no return (0 is the background map).
 inline constexpr std::uint32_t kNoReturnObjectId = 0xFFFFFFFFu;
@@ -41,4 +41,4 @@ void write_frame_exr(const std::filesystem::path& path, const Frame& frame);
 /// missing or mistyped channel or attribute, or OpenEXR's own complaint about the file.
 RangeImage read_frame_exr(const std::filesystem::path& path);
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

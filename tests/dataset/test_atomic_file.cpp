@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "ladarsim/sensor_model/atomic_file.h"
+#include "ladarsim/dataset/atomic_file.h"
 #include "../support/scratch_dir.h"
 
-using ladarsim::sensor_model::AtomicFile;
+using ladarsim::AtomicFile;
 using ladarsim::test::ScratchDir;
 
 namespace {

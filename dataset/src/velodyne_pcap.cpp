@@ -1,4 +1,4 @@
-#include "ladarsim/sensor_model/velodyne_pcap.h"
+#include "ladarsim/dataset/velodyne_pcap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <numbers>
 #include <tuple>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 namespace {
 
 constexpr std::size_t kPayload = 1206;
@@ -107,4 +107,4 @@ std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file) {
     return frames;
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

@@ -1,4 +1,4 @@
-#include "ladarsim/sensor_model/exr_file.h"
+#include "ladarsim/dataset/exr_file.h"
 
 #include <climits>
 #include <exception>
@@ -14,10 +14,10 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/atomic_file.h"
+#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/dataset/input_error.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 namespace {
 
@@ -146,4 +146,4 @@ RangeImage read_frame_exr(const std::filesystem::path& path) {
     }
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 /// What made a return (ground truth; a real sensor cannot tell).
 enum class ReturnSource : std::uint8_t {
@@ -75,4 +75,4 @@ struct Frame {
     double gimbal_el_rad = 0.0;
 };
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

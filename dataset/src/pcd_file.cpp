@@ -1,4 +1,4 @@
-#include "ladarsim/sensor_model/pcd_file.h"
+#include "ladarsim/dataset/pcd_file.h"
 
 #include <array>
 #include <bit>
@@ -13,10 +13,10 @@
 #include <string>
 #include <string_view>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/atomic_file.h"
+#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/dataset/input_error.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 // PCD binary data is the writer's memory image, and every PCD reader assumes little-endian.
 static_assert(std::endian::native == std::endian::little, "PCD binary I/O assumes a little-endian host");
@@ -414,4 +414,4 @@ std::vector<Return> read_frame_pcd(const std::filesystem::path& path) {
     return header.format == DataFormat::binary ? reader.binary(bytes) : reader.ascii(bytes);
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

@@ -5,15 +5,15 @@
 #include <cstdint>
 #include <string>
 
-#include "ladarsim/sensor_model/exr_file.h"
-#include "ladarsim/sensor_model/ground_truth_file.h"
-#include "ladarsim/sensor_model/json_file.h"
-#include "ladarsim/sensor_model/pcd_file.h"
+#include "ladarsim/dataset/exr_file.h"
+#include "ladarsim/dataset/ground_truth_file.h"
+#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/dataset/pcd_file.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 /// The file name of a frame without extension: six digits, zero-padded ("000042"), so that
 /// names sort in frame order; larger indices simply use more digits.
 std::string frame_file_stem(std::uint64_t index);
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

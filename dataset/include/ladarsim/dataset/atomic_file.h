@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 class AtomicFile {
 public:
@@ -33,4 +33,4 @@ private:
     bool committed_ = false;
 };
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

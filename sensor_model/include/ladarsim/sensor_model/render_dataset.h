@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 #include "ladarsim/sensor_model/scenario.h"
 
 namespace ladarsim::sensor_model {

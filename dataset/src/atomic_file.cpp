@@ -1,11 +1,11 @@
-#include "ladarsim/sensor_model/atomic_file.h"
+#include "ladarsim/dataset/atomic_file.h"
 
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
 #include <system_error>
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 AtomicFile::AtomicFile(std::filesystem::path final_path)
     : final_path_(std::move(final_path)), temporary_path_(final_path_.string() + ".tmp") {
@@ -29,4 +29,4 @@ void AtomicFile::commit() {
     committed_ = true;
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 /// One frame's ground truth without its returns, so a renderer can keep every frame's truth
 /// until the end of a run and write it once.
@@ -31,4 +31,4 @@ void write_ground_truth_json(const std::filesystem::path& path, const std::vecto
 /// of the first missing, mistyped, out-of-range or unknown field.
 std::vector<FrameGroundTruth> read_ground_truth_json(const std::filesystem::path& path);
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

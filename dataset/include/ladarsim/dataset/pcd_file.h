@@ -3,9 +3,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 /// Writes the frame's returns as a binary PCD, one point per return, packed (49 bytes a point):
 ///   x y z intensity (F4), range_m time_s (F8), beam_az beam_el (F4, rad),
@@ -20,4 +20,4 @@ void write_frame_pcd(const std::filesystem::path& path, const Frame& frame);
 /// malformed header, truncated data or a value that does not fit its Return field.
 std::vector<Return> read_frame_pcd(const std::filesystem::path& path);
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

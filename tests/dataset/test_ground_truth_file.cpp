@@ -11,13 +11,12 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/ground_truth_file.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/ground_truth_file.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_file.h"
 #include "../support/scratch_dir.h"
 
-using namespace ladarsim::sensor_model;
-using ladarsim::InputError;
+using namespace ladarsim;
 using ladarsim::test::ScratchDir;
 
 namespace {

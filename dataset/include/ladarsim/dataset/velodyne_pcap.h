@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 /// Decodes the VLP-16 data packets of a pcap file (Ethernet/IPv4/UDP, 1206-byte payloads of 12
 /// blocks, each an azimuth and two firing sequences of 16 channels; 2 mm range units) into frames,
@@ -18,4 +18,4 @@ namespace ladarsim::sensor_model {
 /// Throws InputError naming the file for anything that is not such a capture.
 std::vector<Frame> read_velodyne_vlp16_pcap(const std::filesystem::path& file);
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

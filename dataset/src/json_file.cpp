@@ -1,11 +1,11 @@
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/json_file.h"
 
 #include <fstream>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/atomic_file.h"
+#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/dataset/input_error.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 void write_json(const std::filesystem::path& path, const nlohmann::json& value) {
     // Serialised before the file is created, so a value that cannot be written (invalid UTF-8)
@@ -27,4 +27,4 @@ nlohmann::json read_json(const std::filesystem::path& path) {
     }
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim

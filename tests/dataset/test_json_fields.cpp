@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_fields.h"
 
 using ladarsim::InputError;
 using ladarsim::JsonFields;

@@ -1,4 +1,4 @@
-#include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/sensor_model/render_dataset.h"
 
 #include <chrono>
 #include <cmath>
@@ -11,10 +11,10 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/frame_io.h"
-#include "ladarsim/sensor_model/ground_truth_file.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/frame_io.h"
+#include "ladarsim/dataset/ground_truth_file.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_file.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 
 namespace ladarsim::sensor_model {

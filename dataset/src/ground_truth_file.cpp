@@ -1,13 +1,13 @@
-#include "ladarsim/sensor_model/ground_truth_file.h"
+#include "ladarsim/dataset/ground_truth_file.h"
 
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "ladarsim/scene/json_fields.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/json_fields.h"
+#include "ladarsim/dataset/json_file.h"
 
-namespace ladarsim::sensor_model {
+namespace ladarsim {
 
 namespace {
 
@@ -113,4 +113,4 @@ std::vector<FrameGroundTruth> read_ground_truth_json(const std::filesystem::path
     return frames;
 }
 
-}  // namespace ladarsim::sensor_model
+}  // namespace ladarsim
