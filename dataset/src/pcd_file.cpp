@@ -1,6 +1,5 @@
 #include "ladarsim/dataset/pcd_file.h"
 
-#include <array>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -8,13 +7,13 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <optional>
-#include <sstream>
+#include <span>
 #include <string>
-#include <string_view>
+#include <utility>
 
 #include "ladarsim/dataset/atomic_file.h"
 #include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/lzf.h"
 
 namespace ladarsim {
 
@@ -23,62 +22,11 @@ static_assert(std::endian::native == std::endian::little, "PCD binary I/O assume
 
 namespace {
 
-/// One Return member as a PCD field. Values pass through double, which holds every F4, F8, U1,
-/// U2 and U4 value exactly, so one table drives both the writer and the reader.
-struct ReturnField {
-    std::string_view name;
-    char type;  ///< PCD TYPE: F float, U unsigned, I signed
-    int size;   ///< bytes
-    double (*get)(const Return&);
-    void (*set)(Return&, double);
-};
-
-template <auto Member>
-double get_member(const Return& r) {
-    return static_cast<double>(r.*Member);
-}
-
-template <auto Member>
-void set_member(Return& r, double value) {
-    using T = std::remove_reference_t<decltype(r.*Member)>;
-    r.*Member = static_cast<T>(value);
-}
-
-template <int Axis>
-double get_position(const Return& r) {
-    return static_cast<double>(r.position_sensor[Axis]);
-}
-
-template <int Axis>
-void set_position(Return& r, double value) {
-    r.position_sensor[Axis] = static_cast<float>(value);
-}
-
-double get_source(const Return& r) { return static_cast<double>(static_cast<std::uint8_t>(r.source)); }
-void set_source(Return& r, double value) { r.source = static_cast<ReturnSource>(static_cast<std::uint8_t>(value)); }
-
-constexpr std::array<ReturnField, 15> kReturnFields{{
-    {"x", 'F', 4, get_position<0>, set_position<0>},
-    {"y", 'F', 4, get_position<1>, set_position<1>},
-    {"z", 'F', 4, get_position<2>, set_position<2>},
-    {"intensity", 'F', 4, get_member<&Return::intensity>, set_member<&Return::intensity>},
-    {"range_m", 'F', 8, get_member<&Return::range_m>, set_member<&Return::range_m>},
-    {"time_s", 'F', 8, get_member<&Return::time_s>, set_member<&Return::time_s>},
-    {"beam_az", 'F', 4, get_member<&Return::beam_az_rad>, set_member<&Return::beam_az_rad>},
-    {"beam_el", 'F', 4, get_member<&Return::beam_el_rad>, set_member<&Return::beam_el_rad>},
-    {"column", 'U', 2, get_member<&Return::column>, set_member<&Return::column>},
-    {"row", 'U', 2, get_member<&Return::row>, set_member<&Return::row>},
-    {"return_index", 'U', 1, get_member<&Return::return_index>, set_member<&Return::return_index>},
-    {"object_id", 'U', 4, get_member<&Return::object_id>, set_member<&Return::object_id>},
-    {"snr", 'F', 4, get_member<&Return::snr>, set_member<&Return::snr>},
-    {"source", 'U', 1, get_source, set_source},
-    {"pulse_offset", 'U', 1, get_member<&Return::pulse_offset>, set_member<&Return::pulse_offset>},
-}};
-
-constexpr std::size_t point_step_bytes() {
-    std::size_t step = 0;
-    for (const auto& f : kReturnFields) step += static_cast<std::size_t>(f.size);
-    return step;
+template <typename T>
+double load(const char* in) {
+    T v;
+    std::memcpy(&v, in, sizeof v);  // fields need not be aligned
+    return static_cast<double>(v);
 }
 
 template <typename T>
@@ -87,66 +35,29 @@ void store(char* out, double value) {
     std::memcpy(out, &v, sizeof v);
 }
 
-void encode(char type, int size, double value, char* out) {
-    if (type == 'F') {
-        size == 4 ? store<float>(out, value) : store<double>(out, value);
-    } else {
-        switch (size) {
-            case 1: store<std::uint8_t>(out, value); break;
-            case 2: store<std::uint16_t>(out, value); break;
-            default: store<std::uint32_t>(out, value); break;
-        }
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+
+std::vector<std::string_view> split_words(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && is_blank(line[i])) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !is_blank(line[i])) ++i;
+        if (i > start) words.push_back(line.substr(start, i - start));
     }
+    return words;
 }
 
-template <typename T>
-double load(const char* in) {
-    T v;
-    std::memcpy(&v, in, sizeof v);
-    return static_cast<double>(v);
-}
-
-/// Only (type, size) pairs that parse_header accepted reach here.
-double decode(char type, int size, const char* in) {
-    if (type == 'F') return size == 4 ? load<float>(in) : load<double>(in);
-    if (type == 'U') {
-        switch (size) {
-            case 1: return load<std::uint8_t>(in);
-            case 2: return load<std::uint16_t>(in);
-            case 4: return load<std::uint32_t>(in);
-            default: return load<std::uint64_t>(in);
-        }
-    }
-    switch (size) {
-        case 1: return load<std::int8_t>(in);
-        case 2: return load<std::int16_t>(in);
-        case 4: return load<std::int32_t>(in);
-        default: return load<std::int64_t>(in);
-    }
-}
-
-/// A field as the file declares it.
-struct PcdField {
-    std::string name;
-    char type = 'F';
-    int size = 4;
-    int count = 1;
-    const ReturnField* target = nullptr;  ///< nullptr: a field a Return has no place for
-};
-
-enum class DataFormat { ascii, binary };
+enum class DataFormat { ascii, binary, binary_compressed };
 
 struct PcdHeader {
     std::vector<PcdField> fields;
-    std::uint64_t points = 0;
+    std::uint64_t width = 0;
+    std::uint64_t height = 0;
     DataFormat format = DataFormat::binary;
     std::size_t data_offset = 0;  ///< first byte after the DATA line
 };
-
-std::vector<std::string> split_words(std::string_view line) {
-    std::istringstream in{std::string(line)};
-    return {std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
-}
 
 class HeaderParser {
 public:
@@ -159,12 +70,10 @@ public:
             if (pos >= bytes_.size()) fail("DATA", "the header has no DATA line");
             std::size_t end = bytes_.find('\n', pos);
             if (end == std::string::npos) end = bytes_.size();
-            std::string_view line(bytes_.data() + pos, end - pos);
+            const auto words = split_words(std::string_view(bytes_).substr(pos, end - pos));
             pos = end + 1;
-            if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-            const auto words = split_words(line);
             if (words.empty() || words[0].front() == '#') continue;
-            const std::string& keyword = words[0];
+            const std::string keyword(words[0]);
             const std::vector<std::string> values(words.begin() + 1, words.end());
             if (keyword == "DATA") {
                 format = data_format(values);
@@ -197,10 +106,8 @@ private:
     DataFormat data_format(const std::vector<std::string>& values) const {
         if (values.size() == 1 && values[0] == "binary") return DataFormat::binary;
         if (values.size() == 1 && values[0] == "ascii") return DataFormat::ascii;
-        if (values.size() == 1 && values[0] == "binary_compressed") {
-            fail("DATA", "binary_compressed is not supported (pcl_convert_pcd_ascii_binary converts it)");
-        }
-        fail("DATA", "expected ascii or binary");
+        if (values.size() == 1 && values[0] == "binary_compressed") return DataFormat::binary_compressed;
+        fail("DATA", "expected ascii, binary or binary_compressed");
     }
 
     void read_keyword(const std::string& keyword, const std::vector<std::string>& values) {
@@ -224,7 +131,7 @@ private:
         } else if (keyword == "VIEWPOINT") {
             // The cloud's points are read as they are; where it was taken from does not move them.
         } else {
-            fail("header", "unknown keyword '" + keyword + "'");
+            fail("header", "unknown keyword '" + keyword.substr(0, 32) + "'");
         }
     }
 
@@ -236,22 +143,31 @@ private:
         if (!counts_.empty() && counts_.size() != n) {
             fail("COUNT", std::to_string(counts_.size()) + " counts for " + std::to_string(n) + " fields");
         }
-        if (!width_) fail("WIDTH", "the header has no WIDTH line");
-
         PcdHeader header;
         header.format = format;
         header.data_offset = data_offset;
-        const std::uint64_t height = height_.value_or(1);
-        if (height != 0 && *width_ > std::numeric_limits<std::uint64_t>::max() / height) fail("WIDTH", "too large");
-        header.points = *width_ * height;
-        if (points_ && *points_ != header.points) {
-            fail("POINTS", std::to_string(*points_) + " points, but WIDTH x HEIGHT = " + std::to_string(header.points));
+        // Before v0.7 a cloud was a list: POINTS alone gives its length.
+        if (!width_ && !height_ && points_) {
+            header.width = *points_;
+            header.height = 1;
+        } else if (!width_) {
+            fail("WIDTH", "the header has no WIDTH line");
+        } else {
+            header.width = *width_;
+            header.height = height_.value_or(1);
+        }
+        if (header.height != 0 && header.width > std::numeric_limits<std::uint64_t>::max() / header.height) {
+            fail("WIDTH", "too large");
+        }
+        const std::uint64_t points = header.width * header.height;
+        if (points_ && *points_ != points) {
+            fail("POINTS", std::to_string(*points_) + " points, but WIDTH x HEIGHT = " + std::to_string(points));
         }
         for (std::size_t i = 0; i < n; ++i) header.fields.push_back(field(i));
         for (std::string_view axis : {"x", "y", "z"}) {
             bool found = false;
             for (const auto& f : header.fields) found = found || f.name == axis;
-            if (!found) fail("FIELDS", "no '" + std::string(axis) + "' field");
+            if (!found) fail("FIELDS", "no '" + std::string(axis) + "' field: a point cloud needs x, y and z");
         }
         return header;
     }
@@ -264,16 +180,14 @@ private:
             fail("TYPE", what + ": '" + types_[i] + "' is not F, U or I");
         }
         f.type = types_[i][0];
-        f.size = static_cast<int>(whole_number("SIZE", sizes_[i]));
-        const bool valid_size = f.type == 'F' ? (f.size == 4 || f.size == 8)
-                                              : (f.size == 1 || f.size == 2 || f.size == 4 || f.size == 8);
+        const std::uint64_t size = whole_number("SIZE", sizes_[i]);
+        const bool valid_size = f.type == 'F' ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
         if (!valid_size) fail("SIZE", what + ": size " + sizes_[i] + " is not defined for TYPE " + types_[i]);
-        f.count = counts_.empty() ? 1 : static_cast<int>(whole_number("COUNT", counts_[i]));
-        if (f.count < 1) fail("COUNT", what + ": count must be at least 1");
-        for (const auto& target : kReturnFields) {
-            if (target.name == f.name) f.target = &target;
-        }
-        if (f.target && f.count != 1) fail("COUNT", what + ": expected COUNT 1, found " + counts_[i]);
+        f.size = static_cast<int>(size);
+        // Thousands of elements a point is more than any descriptor PCL has (FPFH: 33, VFH: 308).
+        const std::uint64_t count = counts_.empty() ? 1 : whole_number("COUNT", counts_[i]);
+        if (count < 1 || count > 65535) fail("COUNT", what + ": count must be in [1, 65535]");
+        f.count = static_cast<int>(count);
         return f;
     }
 
@@ -283,135 +197,242 @@ private:
     std::optional<std::uint64_t> width_, height_, points_;
 };
 
-class PointReader {
+class DataReader {
 public:
-    PointReader(std::string file, const PcdHeader& header) : file_(std::move(file)), header_(header) {}
+    DataReader(std::string file, const PcdHeader& header, const std::string& bytes)
+        : file_(std::move(file)), header_(header), data_(std::string_view(bytes).substr(header.data_offset)) {}
 
-    /// Stores `value` of field `f` of point `point`; integer fields must hold it exactly.
-    void set(Return& r, const PcdField& f, double value, std::uint64_t point) const {
-        if (f.target->type == 'U') {
-            const double max = std::ldexp(1.0, 8 * f.target->size) - 1.0;
-            if (!(value >= 0.0 && value <= max && value == std::floor(value))) {
-                throw InputError(file_, "DATA",
-                                 "point " + std::to_string(point) + ": " + f.name + " = " +
-                                     std::to_string(value) + " is not a whole number in [0, " +
-                                     std::to_string(static_cast<std::uint64_t>(max)) + "]");
-            }
+    PcdCloud read() const {
+        switch (header_.format) {
+            case DataFormat::ascii: return ascii();
+            case DataFormat::binary: return binary();
+            default: return binary_compressed();
         }
-        f.target->set(r, value);
-    }
-
-    static bool has_position(const Return& r) { return !r.position_sensor.array().isNaN().any(); }
-
-    std::vector<Return> binary(const std::string& bytes) const {
-        std::size_t step = 0;
-        for (const auto& f : header_.fields) step += static_cast<std::size_t>(f.size) * static_cast<std::size_t>(f.count);
-        const std::size_t available = bytes.size() - header_.data_offset;
-        if (header_.points > available / step) {
-            throw InputError(file_, "DATA",
-                             "truncated: " + std::to_string(header_.points) + " points need " +
-                                 std::to_string(header_.points * step) + " bytes, the file has " +
-                                 std::to_string(available));
-        }
-        std::vector<Return> out;
-        out.reserve(header_.points);
-        const char* p = bytes.data() + header_.data_offset;
-        for (std::uint64_t i = 0; i < header_.points; ++i) {
-            Return r;
-            for (const auto& f : header_.fields) {
-                if (f.target) set(r, f, decode(f.type, f.size, p), i);
-                p += static_cast<std::size_t>(f.size) * static_cast<std::size_t>(f.count);
-            }
-            if (has_position(r)) out.push_back(r);
-        }
-        return out;
-    }
-
-    std::vector<Return> ascii(const std::string& bytes) const {
-        std::istringstream in(bytes.substr(header_.data_offset));
-        std::vector<Return> out;
-        std::string line;
-        std::uint64_t point = 0;
-        while (point < header_.points && std::getline(in, line)) {
-            const auto words = split_words(line);
-            if (words.empty()) continue;
-            Return r;
-            std::size_t w = 0;
-            for (const auto& f : header_.fields) {
-                if (w + static_cast<std::size_t>(f.count) > words.size()) {
-                    throw InputError(file_, "DATA", "point " + std::to_string(point) + ": too few values");
-                }
-                if (f.target) set(r, f, number(words[w], point), point);
-                w += static_cast<std::size_t>(f.count);
-            }
-            if (w != words.size()) throw InputError(file_, "DATA", "point " + std::to_string(point) + ": too many values");
-            if (has_position(r)) out.push_back(r);
-            ++point;
-        }
-        if (point < header_.points) {
-            throw InputError(file_, "DATA",
-                             "truncated: " + std::to_string(header_.points) + " points declared, " +
-                                 std::to_string(point) + " found");
-        }
-        return out;
     }
 
 private:
-    double number(const std::string& word, std::uint64_t point) const {
+    [[noreturn]] void fail(const std::string& problem) const { throw InputError(file_, "DATA", problem); }
+
+    PcdCloud empty_cloud() const { return PcdCloud(header_.fields, header_.width, header_.height); }
+
+    std::uint64_t points() const { return header_.width * header_.height; }
+
+    std::uint64_t point_step() const {
+        std::uint64_t step = 0;
+        for (const auto& f : header_.fields) step += static_cast<std::uint64_t>(f.size) * static_cast<std::uint64_t>(f.count);
+        return step;
+    }
+
+    PcdCloud binary() const {
+        // Checked before a cloud of that size is made.
+        if (points() > data_.size() / point_step()) {
+            fail("truncated: " + std::to_string(points()) + " points need " + std::to_string(points() * point_step()) +
+                 " bytes, the file has " + std::to_string(data_.size()));
+        }
+        PcdCloud cloud = empty_cloud();
+        std::memcpy(cloud.data().data(), data_.data(), cloud.data().size());
+        return cloud;
+    }
+
+    /// PCL's layout: two little-endian U4 sizes (compressed, uncompressed), then the LZF stream
+    /// of every point's first field, then every point's second field, and so on.
+    PcdCloud binary_compressed() const {
+        const std::uint64_t points = this->points(), step = point_step();
+        if (points == 0) return empty_cloud();
+        if (data_.size() < 8) fail("truncated: no compressed sizes");
+        const auto compressed = static_cast<std::uint64_t>(load<std::uint32_t>(data_.data()));
+        const auto uncompressed = static_cast<std::uint64_t>(load<std::uint32_t>(data_.data() + 4));
+        if (points > std::numeric_limits<std::uint32_t>::max() / step || uncompressed != points * step) {
+            fail("binary_compressed: " + std::to_string(uncompressed) + " bytes uncompressed, but the header's " +
+                 std::to_string(points) + " points take " + std::to_string(points * step));
+        }
+        if (compressed > data_.size() - 8) {
+            fail("truncated: " + std::to_string(compressed) + " compressed bytes declared, the file has " +
+                 std::to_string(data_.size() - 8));
+        }
+        // A three-byte back reference writes at most 264 bytes: no valid stream expands further,
+        // and a corrupt size must not allocate gigabytes.
+        if (uncompressed > 88 * compressed) fail("binary_compressed: the compressed data is corrupt");
+        std::vector<unsigned char> fields_after_fields(uncompressed);
+        const auto* in = reinterpret_cast<const unsigned char*>(data_.data() + 8);
+        if (lzf_decompress({in, compressed}, fields_after_fields) != uncompressed) {
+            fail("binary_compressed: the compressed data is corrupt");
+        }
+        PcdCloud cloud = empty_cloud();
+        std::size_t offset = 0;
+        for (const auto& f : header_.fields) {
+            const std::size_t width = static_cast<std::size_t>(f.size) * static_cast<std::size_t>(f.count);
+            const unsigned char* block = fields_after_fields.data() + points * offset;
+            for (std::uint64_t i = 0; i < points; ++i) std::memcpy(cloud.data().data() + i * step + offset, block + i * width, width);
+            offset += width;
+        }
+        return cloud;
+    }
+
+    PcdCloud ascii() const {
+        const std::uint64_t points = this->points();
+        // The lines first, so that a header promising more points than the file holds fails
+        // before a cloud of that size is made.
+        std::vector<std::vector<std::string_view>> lines;
+        std::size_t pos = 0;
+        while (lines.size() < points && pos < data_.size()) {
+            std::size_t end = data_.find('\n', pos);
+            if (end == std::string_view::npos) end = data_.size();
+            auto words = split_words(data_.substr(pos, end - pos));
+            pos = end + 1;
+            if (!words.empty()) lines.push_back(std::move(words));
+        }
+        if (lines.size() < points) {
+            fail("truncated: " + std::to_string(points) + " points declared, " + std::to_string(lines.size()) + " found");
+        }
+        PcdCloud cloud = empty_cloud();
+        for (std::uint64_t i = 0; i < points; ++i) {
+            const auto& words = lines[i];
+            const std::string point = "point " + std::to_string(i);
+            std::size_t w = 0;
+            for (std::size_t f = 0; f < header_.fields.size(); ++f) {
+                const PcdField& field = header_.fields[f];
+                if (w + static_cast<std::size_t>(field.count) > words.size()) fail(point + ": too few values");
+                for (int e = 0; e < field.count; ++e) cloud.set(i, f, e, number(field, words[w++], point));
+            }
+            if (w != words.size()) fail(point + ": too many values");
+        }
+        return cloud;
+    }
+
+    /// A value as text, of its field's TYPE and SIZE. Floats are parsed at their own precision
+    /// (as PCL does), not rounded twice through double.
+    double number(const PcdField& field, std::string_view word, const std::string& point) const {
+        if (word.size() > 1 && word.front() == '+') word.remove_prefix(1);
         double value = 0.0;
-        const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-        if (ec != std::errc() || end != word.data() + word.size()) {
-            throw InputError(file_, "DATA", "point " + std::to_string(point) + ": '" + word + "' is not a number");
+        std::from_chars_result parsed{};
+        if (field.type == 'F' && field.size == 4) {
+            float f = 0.0f;
+            parsed = std::from_chars(word.data(), word.data() + word.size(), f);
+            value = f;
+        } else {
+            parsed = std::from_chars(word.data(), word.data() + word.size(), value);
+        }
+        if (parsed.ec != std::errc() || parsed.ptr != word.data() + word.size()) {
+            fail(point + ": " + field.name + " '" + std::string(word) + "' is not a number of TYPE " + field.type +
+                 " SIZE " + std::to_string(field.size));
+        }
+        if (!pcd_type_holds(field.type, field.size, value)) {
+            fail(point + ": " + field.name + " = " + std::string(word) + " does not fit TYPE " + field.type + " SIZE " +
+                 std::to_string(field.size));
         }
         return value;
     }
 
     std::string file_;
     const PcdHeader& header_;
+    std::string_view data_;
 };
 
 }  // namespace
 
-void write_frame_pcd(const std::filesystem::path& path, const Frame& frame) {
-    constexpr std::size_t step = point_step_bytes();
-    const std::size_t n = frame.returns.size();
-    std::string fields, sizes, types, counts;
-    for (const auto& f : kReturnFields) {
-        fields += ' ' + std::string(f.name);
-        sizes += ' ' + std::to_string(f.size);
-        types += std::string(" ") + f.type;
-        counts += " 1";
-    }
-    const std::string header = "# .PCD v0.7 - Point Cloud Data file format\n"
-                               "VERSION 0.7\n"
-                               "FIELDS" + fields + "\nSIZE" + sizes + "\nTYPE" + types + "\nCOUNT" + counts +
-                               "\nWIDTH " + std::to_string(n) +
-                               "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(n) +
-                               "\nDATA binary\n";
-    std::vector<char> data(n * step);
-    char* p = data.data();
-    for (const auto& r : frame.returns) {
-        for (const auto& f : kReturnFields) {
-            encode(f.type, f.size, f.get(r), p);
-            p += f.size;
-        }
-    }
-    AtomicFile out(path);
-    out.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.stream().write(data.data(), static_cast<std::streamsize>(data.size()));
-    out.commit();
+bool pcd_type_holds(char type, int size, double value) {
+    if (type == 'F') return true;
+    const int bits = 8 * size;
+    const double lo = type == 'U' ? 0.0 : -std::ldexp(1.0, bits - 1);
+    const double end = type == 'U' ? std::ldexp(1.0, bits) : std::ldexp(1.0, bits - 1);  // exclusive
+    return value >= lo && value < end && value == std::floor(value);
 }
 
-std::vector<Return> read_frame_pcd(const std::filesystem::path& path) {
+PcdCloud::PcdCloud(std::vector<PcdField> fields, std::uint64_t width, std::uint64_t height)
+    : fields_(std::move(fields)), width_(width), height_(height) {
+    for (const auto& f : fields_) {
+        offsets_.push_back(point_step_);
+        point_step_ += static_cast<std::size_t>(f.size) * static_cast<std::size_t>(f.count);
+    }
+    data_.assign(points() * point_step_, 0);
+}
+
+std::optional<std::size_t> PcdCloud::field(std::string_view name) const {
+    for (std::size_t i = 0; i < fields_.size(); ++i) {
+        if (fields_[i].name == name) return i;
+    }
+    return std::nullopt;
+}
+
+const char* PcdCloud::at(std::uint64_t point, std::size_t field, int element) const {
+    return data_.data() + point * point_step_ + offsets_[field] +
+           static_cast<std::size_t>(element) * static_cast<std::size_t>(fields_[field].size);
+}
+
+char* PcdCloud::at(std::uint64_t point, std::size_t field, int element) {
+    return const_cast<char*>(std::as_const(*this).at(point, field, element));
+}
+
+double PcdCloud::value(std::uint64_t point, std::size_t field, int element) const {
+    const PcdField& f = fields_[field];
+    const char* in = at(point, field, element);
+    if (f.type == 'F') return f.size == 4 ? load<float>(in) : load<double>(in);
+    if (f.type == 'U') {
+        switch (f.size) {
+            case 1: return load<std::uint8_t>(in);
+            case 2: return load<std::uint16_t>(in);
+            case 4: return load<std::uint32_t>(in);
+            default: return load<std::uint64_t>(in);
+        }
+    }
+    switch (f.size) {
+        case 1: return load<std::int8_t>(in);
+        case 2: return load<std::int16_t>(in);
+        case 4: return load<std::int32_t>(in);
+        default: return load<std::int64_t>(in);
+    }
+}
+
+void PcdCloud::set(std::uint64_t point, std::size_t field, int element, double value) {
+    const PcdField& f = fields_[field];
+    char* out = at(point, field, element);
+    if (f.type == 'F') {
+        f.size == 4 ? store<float>(out, value) : store<double>(out, value);
+    } else if (f.type == 'U') {
+        switch (f.size) {
+            case 1: store<std::uint8_t>(out, value); break;
+            case 2: store<std::uint16_t>(out, value); break;
+            case 4: store<std::uint32_t>(out, value); break;
+            default: store<std::uint64_t>(out, value); break;
+        }
+    } else {
+        switch (f.size) {
+            case 1: store<std::int8_t>(out, value); break;
+            case 2: store<std::int16_t>(out, value); break;
+            case 4: store<std::int32_t>(out, value); break;
+            default: store<std::int64_t>(out, value); break;
+        }
+    }
+}
+
+PcdCloud read_pcd(const std::filesystem::path& path) {
     const std::string file = path.string();
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(file, "(file)", "cannot open the point cloud");
     const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) throw InputError(file, "(file)", "cannot read the point cloud");
-
     const PcdHeader header = HeaderParser(file, bytes).parse();
-    const PointReader reader(file, header);
-    return header.format == DataFormat::binary ? reader.binary(bytes) : reader.ascii(bytes);
+    return DataReader(file, header, bytes).read();
+}
+
+void write_pcd(const std::filesystem::path& path, const PcdCloud& cloud) {
+    std::string fields, sizes, types, counts;
+    for (const auto& f : cloud.fields()) {
+        fields += ' ' + f.name;
+        sizes += ' ' + std::to_string(f.size);
+        types += std::string(" ") + f.type;
+        counts += ' ' + std::to_string(f.count);
+    }
+    const std::string header = "# .PCD v0.7 - Point Cloud Data file format\n"
+                               "VERSION 0.7\n"
+                               "FIELDS" + fields + "\nSIZE" + sizes + "\nTYPE" + types + "\nCOUNT" + counts +
+                               "\nWIDTH " + std::to_string(cloud.width()) + "\nHEIGHT " + std::to_string(cloud.height()) +
+                               "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(cloud.points()) + "\nDATA binary\n";
+    AtomicFile out(path);
+    out.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
+    out.stream().write(cloud.data().data(), static_cast<std::streamsize>(cloud.data().size()));
+    out.commit();
 }
 
 }  // namespace ladarsim

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/input_error.h"
 #include "ladarsim/dataset/json_file.h"
-#include "ladarsim/dataset/pcd_file.h"
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/expected_overlap.h"
 

@@ -19,6 +19,7 @@
 
 #include "ladarsim/dataset/exr_file.h"
 #include "ladarsim/dataset/input_error.h"
+#include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;
@@ -67,12 +68,7 @@ std::vector<T> exr_channel(Imf::InputFile& exr, const char* name, Imf::PixelType
 }
 
 InputError error_of(const std::filesystem::path& path) {
-    try {
-        read_frame_exr(path);
-    } catch (const InputError& e) {
-        return e;
-    }
-    throw std::logic_error("no InputError for " + path.string());
+    return test::input_error_of([&] { read_frame_exr(path); });
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <stdexcept>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -14,6 +13,7 @@
 #include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/dataset/input_error.h"
 #include "ladarsim/dataset/json_file.h"
+#include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;
@@ -57,12 +57,7 @@ std::string contents(const std::filesystem::path& path) {
 }
 
 InputError error_of(const std::filesystem::path& path) {
-    try {
-        read_ground_truth_json(path);
-    } catch (const InputError& e) {
-        return e;
-    }
-    throw std::logic_error("no InputError for " + path.string());
+    return test::input_error_of([&] { read_ground_truth_json(path); });
 }
 
 }  // namespace

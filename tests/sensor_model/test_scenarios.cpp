@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "ladarsim/dataset/pcd_file.h"
+#include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/render_dataset.h"
 #include "../support/scratch_dir.h"

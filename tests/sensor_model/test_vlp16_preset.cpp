@@ -6,7 +6,7 @@
 #include <fstream>
 #include <map>
 
-#include "ladarsim/dataset/pcd_file.h"
+#include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/velodyne_pcap.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/galvo_raster.h"

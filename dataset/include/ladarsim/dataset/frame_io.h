@@ -6,9 +6,9 @@
 #include <string>
 
 #include "ladarsim/dataset/exr_file.h"
+#include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/dataset/json_file.h"
-#include "ladarsim/dataset/pcd_file.h"
 
 namespace ladarsim {
 
