@@ -29,6 +29,7 @@
 #include "ladarsim/dataset/json_file.h"
 #include "ladarsim/sensor_model/target_point_counts.h"
 #include "ladarsim/dataset/velodyne_pcap.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sensor_config.h"
 
@@ -337,7 +338,7 @@ int main(int argc, char** argv) {
             }
         } else if (*import_cmd) {
             const auto frames = read_velodyne_vlp16_pcap(pcap_file);
-            sensor_model::write_recorded_dataset(frames, out_dir, pcap_file);
+            write_recorded_dataset(frames, sensor_model::to_json(sensor_model::sensor_preset("velodyne_vlp16")), out_dir, pcap_file);
             std::size_t returns = 0;
             for (const auto& f : frames) returns += f.returns.size();
             std::printf("decoded %zu frames, %zu returns from %s into %s/frames\n", frames.size(), returns, pcap_file.c_str(),

@@ -11,6 +11,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/dataset/input_error.h"
@@ -38,30 +39,6 @@ nlohmann::json render_json(const RenderSettings& r) {
             {"start_time_s", r.start_time_s},
             {"motion_steps", r.motion_steps},
             {"jitter", r.jitter}};
-}
-
-/// The output directory as an absolute path without a trailing separator, checked before any
-/// rendering: it may be absent, empty, or a previous ladarsim dataset (which is replaced), but
-/// never some other directory a user would lose.
-std::filesystem::path checked_out_dir(const std::filesystem::path& requested) {
-    std::filesystem::path out = std::filesystem::absolute(requested).lexically_normal();
-    if (!out.has_filename()) out = out.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::exists(out, ec)) return out;
-    if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string(), "--out", "exists and is not a directory");
-    if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / "manifest.json", ec))
-        throw InputError(out.string(), "--out",
-                         "is a non-empty directory without a ladarsim manifest.json; refusing to replace it");
-    return out;
-}
-
-/// Moves the finished staging directory to `out`, replacing a previous dataset there.
-void swap_in(const std::filesystem::path& staging, const std::filesystem::path& out) {
-    const std::filesystem::path old = out.string() + ".old";
-    std::filesystem::remove_all(old);
-    if (std::filesystem::exists(out)) std::filesystem::rename(out, old);
-    std::filesystem::rename(staging, out);
-    std::filesystem::remove_all(old);
 }
 
 /// The initial map Algorithm 1 subtracts: a survey of the static scene alone (moving objects
@@ -115,8 +92,8 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
 
     // Built beside the destination and swapped in when complete: an interrupted run leaves a
     // previous dataset untouched, and a finished one never mixes with its stale frames.
-    const std::filesystem::path out = checked_out_dir(options.out_dir);
-    const std::filesystem::path staging = out.string() + ".partial";
+    const std::filesystem::path out = checked_dataset_dir(options.out_dir);
+    const std::filesystem::path staging = staging_dir(out);
     const std::filesystem::path run_file = staging / "run.json";
     const std::filesystem::path frames_dir = staging / "frames";
     const nlohmann::json run_key = {{"scenario", scenario.source}, {"seed", scenario.render.seed}, {"frames", scenario.render.frames}};
@@ -219,7 +196,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     write_ground_truth_json(staging / "ground_truth.json", truth);
     summary.background_points = write_background_map(scenario, pointings, staging / "background.pcd");
     const nlohmann::json manifest = {
-        {"software", {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}},
+        {"software", software_json()},
         {"scenario_file", std::filesystem::absolute(scenario.file).string()},
         {"scenario", scenario.source},
         {"sensor", to_json(scenario.sensor)},
@@ -240,30 +217,8 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         std::filesystem::remove(truth_of(k));
     }
     std::filesystem::remove(run_file);
-    swap_in(staging, out);
+    swap_in_dataset(staging, out);
     return summary;
-}
-
-}  // namespace ladarsim::sensor_model
-
-namespace ladarsim::sensor_model {
-
-void write_recorded_dataset(const std::vector<Frame>& frames, const std::filesystem::path& out_dir,
-                            const std::filesystem::path& source) {
-    const std::filesystem::path out = checked_out_dir(out_dir);
-    const std::filesystem::path staging = out.string() + ".partial";
-    std::filesystem::remove_all(staging);
-    std::filesystem::create_directories(staging / "frames");
-    nlohmann::json log = nlohmann::json::array();
-    for (const Frame& f : frames) {
-        write_frame_pcd(staging / "frames" / (frame_file_stem(f.index) + ".pcd"), f);
-        log.push_back({{"index", f.index}, {"start_time_s", f.start_time_s}, {"end_time_s", f.end_time_s},
-                       {"returns", f.returns.size()}});
-    }
-    write_json(staging / "manifest.json", {{"software", {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}},
-                                           {"recorded_from", std::filesystem::absolute(source).string()},
-                                           {"frames", log}});
-    swap_in(staging, out);
 }
 
 }  // namespace ladarsim::sensor_model

@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "ladarsim/dataset/frame.h"
 #include "ladarsim/sensor_model/scenario.h"
 
 namespace ladarsim::sensor_model {
@@ -65,8 +64,8 @@ struct DatasetSummary {
 ///   the static scene alone, noise-free, from each gimbal pointing used (the initial map that
 ///   detection subtracts)
 /// Each file is written under a temporary name and renamed when complete, inside `<out_dir>.partial`,
-/// which replaces `out_dir` once every file is there. `out_dir` may be absent, empty or an earlier
-/// dataset; any other existing path is an InputError, checked before rendering starts.
+/// which replaces `out_dir` once every file is there (dataset_directory.h). `out_dir` may be absent,
+/// empty or an earlier dataset; any other existing path is an InputError, checked before rendering starts.
 /// A finished frame leaves a record beside its files (frames/NNNNNN.log.json and .truth.json),
 /// which is how a resumed run, or the first process of a team, knows it is done; the records are
 /// merged into ground_truth.json and manifest.json at the end. With a team, the first process
@@ -74,11 +73,5 @@ struct DatasetSummary {
 /// a summary of their own frames. A failed frame throws FrameFailure on every process, after the
 /// others have stopped at their current frame.
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options);
-
-/// Writes recorded frames (e.g. decoded Velodyne packets) as a dataset detect/ reads:
-/// frames/NNNNNN.pcd and a manifest.json naming the source; no ground truth, no initial map.
-/// The same rules for `out_dir` as render_dataset.
-void write_recorded_dataset(const std::vector<Frame>& frames, const std::filesystem::path& out_dir,
-                            const std::filesystem::path& source);
 
 }  // namespace ladarsim::sensor_model
