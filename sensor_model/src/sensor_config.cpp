@@ -197,8 +197,15 @@ nlohmann::json to_json(const SensorConfig& c) {
         {"saturation_current_a", c.saturation_current_a},
         {"false_alarm_rate_hz", c.false_alarm_rate_hz},
         {"reported_returns", to_string(c.reported_returns)},
+        // The raster again, in the shape readers of a dataset take it from (dataset/manifest.h);
+        // divergence_mrad there is the wider axis.
         {"derived",
-         {{"line_duration_s", c.line_duration_s()},
+         {{"beams_az", c.beams_az},
+          {"beams_el", c.beams_el},
+          {"field_az_deg", c.field_az_deg},
+          {"field_el_deg", c.field_el_deg},
+          {"divergence_mrad", std::max(c.divergence_mrad, c.divergence_el_mrad)},
+          {"line_duration_s", c.line_duration_s()},
           {"frame_scan_duration_s", c.frame_scan_duration_s()},
           {"beam_dwell_s", c.beam_dwell_s()},
           {"pulses_per_beam", c.pulses_per_beam()},

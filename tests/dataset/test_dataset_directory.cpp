@@ -9,6 +9,7 @@
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/input_error.h"
 #include "ladarsim/dataset/json_file.h"
+#include "ladarsim/dataset/manifest.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"
 
@@ -71,6 +72,11 @@ TEST_CASE("a recorded dataset: its frames, and a manifest naming the source and 
     CHECK(manifest.at("frames").at(1).at("returns") == 2);
     CHECK(manifest.at("software").at("name") == "ladarsim");
     CHECK_FALSE(std::filesystem::exists(dir / "rec.partial"));
+    // What detect/ needs of it: the sensor's geometry, and no gimbal pointing for recorded frames.
+    const Manifest m = read_manifest(dir / "rec" / "manifest.json");
+    CHECK(m.sensor.beams_az == 1800);
+    CHECK(m.pointing.size() == 2);
+    CHECK_FALSE(m.pointing[1]);
 
     std::filesystem::create_directories(dir / "photos");
     std::ofstream(dir / "photos" / "holiday.jpg") << "not ours";

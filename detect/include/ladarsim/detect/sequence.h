@@ -14,6 +14,7 @@
 namespace ladarsim::detect {
 
 struct Sequence {
+    SensorGeometry sensor;  ///< from manifest.json
     std::vector<std::uint64_t> frame_index;
     std::vector<double> time_s;
     std::vector<Points> frames;
@@ -24,8 +25,9 @@ struct Sequence {
     std::vector<FrameGroundTruth> truth;  ///< empty when there is no ground_truth.json
 };
 
-/// Reads DIR/frames/*.pcd (in name order), DIR/background.pcd and DIR/ground_truth.json when
-/// present. Throws InputError for a missing directory, no frames, or a malformed file.
+/// Reads DIR/manifest.json, DIR/frames/*.pcd (in name order), and DIR/background.pcd and
+/// DIR/ground_truth.json when present. Throws InputError for a missing directory, no frames, a
+/// manifest that does not say which sensor took the frames (read_manifest), or a malformed file.
 Sequence load_sequence(const std::filesystem::path& dir);
 
 /// The id of the first drone in the ground truth (the target to score), if any.
