@@ -78,7 +78,9 @@ void write_frame_pcd(const std::filesystem::path& path, const Frame& frame) {
     for (const auto& f : kReturnFields) fields.push_back({std::string(f.name), f.type, f.size, 1});
     PcdCloud cloud(std::move(fields), frame.returns.size(), 1);
     for (std::size_t i = 0; i < frame.returns.size(); ++i) {
-        for (std::size_t f = 0; f < kReturnFields.size(); ++f) cloud.set(i, f, 0, kReturnFields[f].get(frame.returns[i]));
+        for (std::size_t f = 0; f < kReturnFields.size(); ++f) {
+            cloud.set(i, f, 0, kReturnFields[f].get(frame.returns[i]));
+        }
     }
     write_pcd(path, cloud);
 }
@@ -92,7 +94,8 @@ std::vector<Return> read_frame_pcd(const std::filesystem::path& path) {
         if (!f) continue;
         const PcdField& field = cloud.fields()[*f];
         if (field.count != 1) {
-            throw InputError(file, "COUNT", "field '" + field.name + "': expected COUNT 1, found " + std::to_string(field.count));
+            throw InputError(file, "COUNT",
+                             "field '" + field.name + "': expected COUNT 1, found " + std::to_string(field.count));
         }
         sources.push_back({&target, *f});
     }

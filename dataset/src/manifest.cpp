@@ -28,10 +28,14 @@ SensorGeometry read_geometry(JsonFields& manifest) {
     return g;
 }
 
-std::optional<FramePointing> read_pointing(const nlohmann::json& frame, const std::string& file, const std::string& path) {
+std::optional<FramePointing> read_pointing(const nlohmann::json& frame, const std::string& file,
+                                           const std::string& path) {
     JsonFields f(frame, file, path);
     if (!f.has("gimbal_az_rad")) return std::nullopt;
-    return FramePointing{f.number("gimbal_az_rad", -kAnyNumber, kAnyNumber), f.number("gimbal_el_rad", -kAnyNumber, kAnyNumber)};
+    FramePointing p;
+    p.gimbal_az_rad = f.number("gimbal_az_rad", -kAnyNumber, kAnyNumber);
+    p.gimbal_el_rad = f.number("gimbal_el_rad", -kAnyNumber, kAnyNumber);
+    return p;
 }
 
 }  // namespace
@@ -39,7 +43,8 @@ std::optional<FramePointing> read_pointing(const nlohmann::json& frame, const st
 Manifest read_manifest(const std::filesystem::path& file) {
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) {
-        throw InputError(file.string(), "sensor.derived", "no manifest.json: the dataset does not say which sensor took it");
+        throw InputError(file.string(), "sensor.derived",
+                         "no manifest.json: the dataset does not say which sensor took it");
     }
     const nlohmann::json json = read_json(file);
     JsonFields top(json, file.string(), "");

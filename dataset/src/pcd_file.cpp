@@ -263,7 +263,9 @@ private:
         for (const auto& f : header_.fields) {
             const std::size_t width = static_cast<std::size_t>(f.size) * static_cast<std::size_t>(f.count);
             const unsigned char* block = fields_after_fields.data() + points * offset;
-            for (std::uint64_t i = 0; i < points; ++i) std::memcpy(cloud.data().data() + i * step + offset, block + i * width, width);
+            for (std::uint64_t i = 0; i < points; ++i) {
+                std::memcpy(cloud.data().data() + i * step + offset, block + i * width, width);
+            }
             offset += width;
         }
         return cloud;
@@ -271,38 +273,43 @@ private:
 
     PcdCloud ascii() const {
         const std::uint64_t points = this->points();
-        // The lines first, so that a header promising more points than the file holds fails
-        // before a cloud of that size is made.
-        std::vector<std::vector<std::string_view>> lines;
+        std::size_t elements = 0;
+        for (const auto& f : header_.fields) elements += static_cast<std::size_t>(f.count);
+        // Every line counted first, so that a header promising more points or values than the
+        // file holds fails before a cloud of that size is made.
+        std::vector<std::string_view> lines;
         std::size_t pos = 0;
         while (lines.size() < points && pos < data_.size()) {
             std::size_t end = data_.find('\n', pos);
             if (end == std::string_view::npos) end = data_.size();
-            auto words = split_words(data_.substr(pos, end - pos));
+            const std::string_view line = data_.substr(pos, end - pos);
             pos = end + 1;
-            if (!words.empty()) lines.push_back(std::move(words));
+            const std::size_t words = split_words(line).size();
+            if (words == 0) continue;
+            if (words != elements) {
+                const std::string problem = words < elements ? ": too few values" : ": too many values";
+                fail("point " + std::to_string(lines.size()) + problem);
+            }
+            lines.push_back(line);
         }
         if (lines.size() < points) {
             fail("truncated: " + std::to_string(points) + " points declared, " + std::to_string(lines.size()) + " found");
         }
         PcdCloud cloud = empty_cloud();
         for (std::uint64_t i = 0; i < points; ++i) {
-            const auto& words = lines[i];
-            const std::string point = "point " + std::to_string(i);
+            const auto words = split_words(lines[i]);
             std::size_t w = 0;
             for (std::size_t f = 0; f < header_.fields.size(); ++f) {
                 const PcdField& field = header_.fields[f];
-                if (w + static_cast<std::size_t>(field.count) > words.size()) fail(point + ": too few values");
-                for (int e = 0; e < field.count; ++e) cloud.set(i, f, e, number(field, words[w++], point));
+                for (int e = 0; e < field.count; ++e) cloud.set(i, f, e, number(field, words[w++], i));
             }
-            if (w != words.size()) fail(point + ": too many values");
         }
         return cloud;
     }
 
     /// A value as text, of its field's TYPE and SIZE. Floats are parsed at their own precision
     /// (as PCL does), not rounded twice through double.
-    double number(const PcdField& field, std::string_view word, const std::string& point) const {
+    double number(const PcdField& field, std::string_view word, std::uint64_t point) const {
         if (word.size() > 1 && word.front() == '+') word.remove_prefix(1);
         double value = 0.0;
         std::from_chars_result parsed{};
@@ -313,13 +320,10 @@ private:
         } else {
             parsed = std::from_chars(word.data(), word.data() + word.size(), value);
         }
-        if (parsed.ec != std::errc() || parsed.ptr != word.data() + word.size()) {
-            fail(point + ": " + field.name + " '" + std::string(word) + "' is not a number of TYPE " + field.type +
-                 " SIZE " + std::to_string(field.size));
-        }
-        if (!pcd_type_holds(field.type, field.size, value)) {
-            fail(point + ": " + field.name + " = " + std::string(word) + " does not fit TYPE " + field.type + " SIZE " +
-                 std::to_string(field.size));
+        const bool complete = parsed.ec == std::errc() && parsed.ptr == word.data() + word.size();
+        if (!complete || !pcd_type_holds(field.type, field.size, value)) {
+            fail("point " + std::to_string(point) + ": " + field.name + " '" + std::string(word) + "' is not a number of TYPE " +
+                 field.type + " SIZE " + std::to_string(field.size));
         }
         return value;
     }

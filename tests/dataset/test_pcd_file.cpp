@@ -286,6 +286,10 @@ TEST_CASE("ascii values that are not numbers of their field's TYPE and SIZE: Inp
         CHECK(e.field() == "DATA");
         CHECK_THAT(e.problem(), Catch::Contains("point 1"));
     }
+    // Values are counted before the cloud is made: a header promising far more than the lines
+    // hold fails at the first line, without memory for a hundred million points.
+    write_text(path, "FIELDS x y z d\nSIZE 4 4 4 8\nTYPE F F F F\nCOUNT 1 1 1 65535\nWIDTH 100000000\nDATA ascii\n1 2 3 4\n");
+    CHECK_THAT(error_of(path).problem(), Catch::Contains("point 0: too few values"));
     // NaN marks a beam without a return; whole numbers may be written as decimals.
     write_text(path, header + "nan NaN nan 0\n1 2 3 4294967295.0\n");
     const PcdCloud cloud = read_pcd(path);
