@@ -7,7 +7,7 @@
 
 #include "command.h"
 #include "ladarsim/bench/benchmarks.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::apps {
 namespace {
@@ -55,7 +55,7 @@ struct BenchCommand {
             }
         }
         if (!bench_json.empty()) {
-            sensor_model::write_json(bench_json, result);
+            write_json(bench_json, result);
             std::printf("wrote %s\n", bench_json.c_str());
         } else {
             std::cout << result.dump(2) << "\n";

@@ -10,7 +10,7 @@
 
 #include "command.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::apps {
 namespace {
@@ -60,7 +60,7 @@ struct DetectCommand {
             out["supervised"] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
         }
         if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + method_name + ".json")).string();
-        sensor_model::write_json(detections_file, out);
+        write_json(detections_file, out);
         std::printf("%s over %zu frames: %d detected, %d predicted, %zu without a box; wrote %s\n", method_name.c_str(),
                     detections.size(), found, predicted, detections.size() - found - predicted, detections_file.c_str());
         return 0;

@@ -11,8 +11,8 @@
 #include "plot_script.h"
 #include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::apps {
 namespace {
@@ -31,7 +31,7 @@ struct EvalCommand {
 
     int run() {
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
-        const nlohmann::json in = sensor_model::read_json(detections_file);
+        const nlohmann::json in = read_json(detections_file);
         if (!in.contains("supervised") || !in.contains("target"))
             throw InputError(detections_file, "supervised", "missing: the dataset had no ground truth when detect ran");
         std::vector<detect::Detection> detections;
@@ -49,7 +49,7 @@ struct EvalCommand {
                     scores["eao"].get<double>(), interval.first, interval.second, scores["failures"].get<int>(),
                     scores["frames_lost"].get<int>());
         const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
-        if (!json_path.empty()) sensor_model::write_json(json_path, scores);
+        if (!json_path.empty()) write_json(json_path, scores);
         if (!eval_plot.empty()) {
             run_plot_script("plot_eval.py", json_path, eval_plot);
             if (eval_json.empty()) std::filesystem::remove(json_path);

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/sensor_model/render_dataset.h"
 
 namespace ladarsim::apps {
 

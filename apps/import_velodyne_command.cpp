@@ -1,12 +1,12 @@
 // `ladarsim import-velodyne`: a VLP-16 pcap capture decoded into a dataset of recorded frames.
-#include <cstddef>
-#include <cstdio>
 #include <memory>
 #include <string>
 
 #include "command.h"
-#include "ladarsim/sensor_model/dataset.h"
-#include "ladarsim/sensor_model/velodyne_pcap.h"
+#include "import_summary.h"
+#include "ladarsim/dataset/dataset_directory.h"
+#include "ladarsim/dataset/velodyne_pcap.h"
+#include "ladarsim/sensor_model/sensor.h"
 
 namespace ladarsim::apps {
 namespace {
@@ -22,12 +22,10 @@ struct ImportVelodyneCommand {
     }
 
     int run() {
-        const auto frames = sensor_model::read_velodyne_vlp16_pcap(pcap_file);
-        sensor_model::write_recorded_dataset(frames, out_dir, pcap_file);
-        std::size_t returns = 0;
-        for (const auto& f : frames) returns += f.returns.size();
-        std::printf("decoded %zu frames, %zu returns from %s into %s/frames\n", frames.size(), returns, pcap_file.c_str(),
-                    out_dir.c_str());
+        const auto frames = read_velodyne_vlp16_pcap(pcap_file);
+        // The manifest names the sensor, so that detection takes the VLP-16's geometry.
+        write_recorded_dataset(frames, sensor_model::to_json(sensor_model::sensor_preset("velodyne_vlp16")), out_dir, pcap_file);
+        print_import_summary(frames, pcap_file, out_dir);
         return 0;
     }
 };

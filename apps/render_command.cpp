@@ -12,8 +12,9 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "ladarsim/dataset/frame.h"
 #include "stop_signal.h"
-#include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/sensor_model/render_dataset.h"
 #include "ladarsim/sensor_model/scenario.h"
 
 namespace ladarsim::apps {
@@ -26,7 +27,7 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
     std::printf("returns: %llu in all\n", static_cast<unsigned long long>(s.returns));
     for (const auto& [id, count] : s.returns_by_object) {
         std::string label = id == 0                       ? "background map"
-                            : id == sensor_model::kNoObject ? "false alarms (detector noise)"
+                            : id == kNoObject ? "false alarms (detector noise)"
                                                             : "object " + std::to_string(id);
         for (const auto& o : scenario.scene.objects) {
             if (o.id == id) label += " (" + std::string(scene::to_string(o.object_class)) + (o.name.empty() ? "" : " " + o.name) + ")";

@@ -6,8 +6,9 @@
 #include <string>
 
 #include "command.h"
-#include "ladarsim/sensor_model/json_file.h"
-#include "ladarsim/sensor_model/ouster_pcap.h"
+#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/dataset/ouster_pcap.h"
+#include "ladarsim/sensor_model/ouster_sensor.h"
 #include "ladarsim/sensor_model/sensor.h"
 
 namespace ladarsim::apps {
@@ -35,11 +36,11 @@ struct SensorCommand {
             std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
             return 0;
         }
-        const nlohmann::json sensor = sensor_model::ouster_sensor_json(sensor_model::read_ouster_metadata(metadata_file));
+        const nlohmann::json sensor = sensor_model::ouster_sensor_json(read_ouster_metadata(metadata_file));
         if (out_file.empty()) {
             std::cout << sensor.dump(2) << "\n";
         } else {
-            sensor_model::write_json(out_file, sensor);
+            write_json(out_file, sensor);
             std::printf("wrote %s (sensor \"%s\"; name it in a scenario as \"sensor\": {\"file\": ...})\n", out_file.c_str(),
                         sensor.at("name").get<std::string>().c_str());
         }

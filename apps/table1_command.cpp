@@ -10,8 +10,8 @@
 #include "plot_script.h"
 #include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/atomic_file.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/dataset/json_file.h"
 #include "ladarsim/sensor_model/sensor.h"
 
 namespace ladarsim::apps {
@@ -50,16 +50,16 @@ struct Table1Command {
             [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
         const std::string markdown = experiments::table1_markdown(rows);
         std::cout << markdown;
-        if (!table_json.empty()) sensor_model::write_json(table_json, rows);
+        if (!table_json.empty()) write_json(table_json, rows);
         if (!table_markdown.empty()) {
-            sensor_model::AtomicFile out(table_markdown);
+            AtomicFile out(table_markdown);
             out.stream() << markdown;
             out.commit();
         }
         if (!table_plot.empty()) {
             // The plot reads the numbers back from JSON, so it always shows what was written.
             const std::string json_for_plot = table_json.empty() ? table_plot + ".json" : table_json;
-            if (table_json.empty()) sensor_model::write_json(json_for_plot, rows);
+            if (table_json.empty()) write_json(json_for_plot, rows);
             run_plot_script("plot_table1.py", json_for_plot, table_plot);
             if (table_json.empty()) std::filesystem::remove(json_for_plot);
         }

@@ -13,9 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/exr_file.h"
-#include "ladarsim/sensor_model/frame_io.h"
+#include "ladarsim/dataset/exr_file.h"
+#include "ladarsim/dataset/frame_io.h"
+#include "ladarsim/dataset/input_error.h"
 
 namespace ladarsim::apps {
 
@@ -63,9 +63,9 @@ std::string percent_decoded(const std::string& s) {
 Response range_image(const fs::path& run_dir, const std::string& frame) {
     if (frame.empty() || frame.size() > 9 || frame.find_first_not_of("0123456789") != std::string::npos)
         return {400, "text/plain", "bad frame number\n"};
-    const fs::path exr = run_dir / "frames" / (sensor_model::frame_file_stem(std::stoull(frame)) + ".exr");
+    const fs::path exr = run_dir / "frames" / (frame_file_stem(std::stoull(frame)) + ".exr");
     if (!fs::is_regular_file(exr)) return {404, "text/plain", "no such frame\n"};
-    const sensor_model::RangeImage image = sensor_model::read_frame_exr(exr);
+    const RangeImage image = read_frame_exr(exr);
     Response r{200, "application/octet-stream", {}};
     const std::uint32_t size[2] = {static_cast<std::uint32_t>(image.columns), static_cast<std::uint32_t>(image.rows)};
     r.body.append(reinterpret_cast<const char*>(size), sizeof size);

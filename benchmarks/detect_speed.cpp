@@ -11,6 +11,10 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
+/// The paper's raster: 150 x 20 beams over 0.5 x 0.5 deg, 0.62 mrad beams.
+const ladarsim::SensorGeometry kPaperSensor{
+    .beams_az = 150, .beams_el = 20, .field_az_deg = 0.5, .field_el_deg = 0.5, .divergence_mrad = 0.62};
+
 /// A terrain-like map: points on a gently rolling surface 1.5-2.5 km out, across the field.
 Points map_of(std::size_t n, std::mt19937& rng) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -44,7 +48,7 @@ int main() {
             config.rbnn_radius_m = 0.3;
             config.lambda = 180.0;
             const auto built = Clock::now();
-            TargetTracker tracker(config, map);
+            TargetTracker tracker(config, kPaperSensor, map);
             const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - built).count();
             const auto start = Clock::now();
             int found = 0;

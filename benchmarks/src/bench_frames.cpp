@@ -33,7 +33,7 @@ ObjectError compare(const Rendering& r, const Rendering& reference, std::uint32_
     auto tally = [&](const Rendering& x) {
         Seen s;
         for (std::size_t f = 0; f < x.frames.size(); ++f) {
-            for (const sensor_model::Return& ret : x.frames[f].returns) {
+            for (const Return& ret : x.frames[f].returns) {
                 if (ret.object_id != object_id) continue;
                 ++s.returns;
                 s.energy += ret.intensity;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 #include "ladarsim/sensor_model/scenario.h"
 
 namespace ladarsim::bench {
@@ -17,7 +17,7 @@ inline double seconds_since(Clock::time_point start) {
 }
 
 struct Rendering {
-    std::vector<sensor_model::Frame> frames;
+    std::vector<Frame> frames;
     double seconds = 0.0;
     std::uint64_t beams = 0;
     std::uint64_t rays = 0;

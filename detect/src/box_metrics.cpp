@@ -4,11 +4,11 @@
 
 namespace ladarsim::detect {
 
-double centre_distance_m(const sensor_model::OrientedBox& a, const sensor_model::OrientedBox& b) {
+double centre_distance_m(const OrientedBox& a, const OrientedBox& b) {
     return (a.centre - b.centre).norm();
 }
 
-double axis_aligned_iou(const sensor_model::OrientedBox& a, const sensor_model::OrientedBox& b) {
+double axis_aligned_iou(const OrientedBox& a, const OrientedBox& b) {
     const Eigen::Vector3d a_lo = a.centre - 0.5 * a.size, a_hi = a.centre + 0.5 * a.size;
     const Eigen::Vector3d b_lo = b.centre - 0.5 * b.size, b_hi = b.centre + 0.5 * b.size;
     double intersection = 1.0;

@@ -63,8 +63,10 @@ std::vector<Cluster> rbnn(const Points& points, double radius_m) {
     return clusters;
 }
 
-double vrbnn_radius_m(double lambda, int h_scan, int v_scan, double fov_deg, double range_m, double bias_m) {
-    return lambda / (static_cast<double>(h_scan) * v_scan) * std::tan(fov_deg * std::numbers::pi / 180.0) * range_m + bias_m;
+double vrbnn_radius_m(double lambda, const SensorGeometry& sensor, double range_m, double bias_m) {
+    const double fov_rad = std::min(sensor.field_az_deg, sensor.field_el_deg) * std::numbers::pi / 180.0;
+    const double beams = static_cast<double>(sensor.beams_az) * sensor.beams_el;
+    return lambda / beams * std::tan(fov_rad) * range_m + bias_m;
 }
 
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours) {

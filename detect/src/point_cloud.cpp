@@ -4,17 +4,17 @@
 
 namespace ladarsim::detect {
 
-Points positions_of(const std::vector<sensor_model::Return>& returns) {
+Points positions_of(const std::vector<Return>& returns) {
     Points p;
     p.reserve(returns.size());
     for (const auto& r : returns) p.push_back(r.position_sensor);
     return p;
 }
 
-sensor_model::OrientedBox bounding_box(const Points& points) {
+OrientedBox bounding_box(const Points& points) {
     Eigen::AlignedBox3f box;
     for (const auto& p : points) box.extend(p);
-    sensor_model::OrientedBox b;
+    OrientedBox b;
     if (box.isEmpty()) return b;
     b.centre = box.center().cast<double>();
     b.size = box.sizes().cast<double>();

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "ladarsim/dataset/frame_pcd.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/manifest.h"
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/expected_overlap.h"
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/json_file.h"
-#include "ladarsim/sensor_model/pcd_file.h"
 
 namespace ladarsim::detect {
 
@@ -22,24 +22,22 @@ Sequence load_sequence(const std::filesystem::path& dir) {
         if (e.path().extension() == ".pcd") files.push_back(e.path());
     std::sort(files.begin(), files.end());
     if (files.empty()) throw InputError(frames_dir.string(), "frames", "no .pcd frames");
-    if (std::filesystem::exists(dir / "ground_truth.json")) s.truth = sensor_model::read_ground_truth_json(dir / "ground_truth.json");
+    const Manifest manifest = read_manifest(dir / "manifest.json");
+    s.sensor = manifest.sensor;
+    if (std::filesystem::exists(dir / "ground_truth.json")) s.truth = read_ground_truth_json(dir / "ground_truth.json");
     for (std::size_t i = 0; i < files.size(); ++i) {
-        s.frames.push_back(positions_of(sensor_model::read_frame_pcd(files[i])));
+        s.frames.push_back(positions_of(read_frame_pcd(files[i])));
         s.frame_index.push_back(i < s.truth.size() ? s.truth[i].index : i);
         // Without ground truth, frames are taken 1/20 s apart (the paper's frame rate).
         s.time_s.push_back(i < s.truth.size() ? 0.5 * (s.truth[i].start_time_s + s.truth[i].end_time_s) : i / 20.0);
     }
     s.boresight.assign(files.size(), std::nullopt);
-    if (std::filesystem::exists(dir / "manifest.json")) {
-        const nlohmann::json manifest = sensor_model::read_json(dir / "manifest.json");
-        const auto& frames = manifest.at("frames");
-        for (std::size_t i = 0; i < files.size() && i < frames.size(); ++i) {
-            if (!frames[i].contains("gimbal_az_rad")) continue;  // recorded frames carry no pointing
-            const double az = frames[i].at("gimbal_az_rad").get<double>(), el = frames[i].at("gimbal_el_rad").get<double>();
-            s.boresight[i] = Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-        }
+    for (std::size_t i = 0; i < files.size() && i < manifest.pointing.size(); ++i) {
+        if (!manifest.pointing[i]) continue;  // recorded frames carry no pointing
+        const double az = manifest.pointing[i]->gimbal_az_rad, el = manifest.pointing[i]->gimbal_el_rad;
+        s.boresight[i] = Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
     }
-    if (std::filesystem::exists(dir / "background.pcd")) s.background = positions_of(sensor_model::read_frame_pcd(dir / "background.pcd"));
+    if (std::filesystem::exists(dir / "background.pcd")) s.background = positions_of(read_frame_pcd(dir / "background.pcd"));
     return s;
 }
 
@@ -50,7 +48,7 @@ std::optional<std::uint32_t> default_target(const Sequence& s) {
     return std::nullopt;
 }
 
-std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target) {
+std::optional<OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target) {
     if (i >= s.truth.size()) return std::nullopt;
     for (const auto& o : s.truth[i].objects) {
         if (o.object_id != target) continue;
@@ -60,7 +58,7 @@ std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_
             const Eigen::Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
             box.extend(b.centre + b.orientation * corner.cwiseProduct(b.size));
         }
-        sensor_model::OrientedBox out;
+        OrientedBox out;
         out.centre = box.center();
         out.size = box.sizes();
         return out;
@@ -69,7 +67,7 @@ std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_
 }
 
 std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config) {
-    TargetTracker tracker(config, s.background);
+    TargetTracker tracker(config, s.sensor, s.background);
     std::vector<Detection> out;
     for (std::size_t i = 0; i < s.frames.size(); ++i)
         out.push_back(tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]));
@@ -79,7 +77,7 @@ std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& 
 SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target) {
     constexpr std::size_t kSkipAfterFailure = 5;  // VOT: re-initialise five frames after a failure
     SupervisedRun run;
-    TargetTracker tracker(config, s.background);
+    TargetTracker tracker(config, s.sensor, s.background);
     std::size_t reinit_at = 0;
     for (std::size_t i = 0; i < s.frames.size(); ++i) {
         const auto truth = truth_box(s, i, target);

@@ -66,8 +66,11 @@ struct TargetTracker::Kalman {
     }
 };
 
-TargetTracker::TargetTracker(const DetectorConfig& config, const Points& background_map)
-    : config_(config), background_(background_map, config.background_resolution_m), kalman_(std::make_unique<Kalman>()) {}
+TargetTracker::TargetTracker(const DetectorConfig& config, const SensorGeometry& sensor, const Points& background_map)
+    : config_(config),
+      sensor_(sensor),
+      background_(background_map, config.background_resolution_m),
+      kalman_(std::make_unique<Kalman>()) {}
 
 TargetTracker::~TargetTracker() = default;
 
@@ -94,13 +97,13 @@ std::optional<Eigen::Vector3d> TargetTracker::fir_prediction(double time_s) cons
     return mean_c + velocity * (time_s - mean_t);
 }
 
-void TargetTracker::remember(double time_s, const sensor_model::OrientedBox& box) {
+void TargetTracker::remember(double time_s, const OrientedBox& box) {
     history_.emplace_back(time_s, box.centre);
     while (static_cast<int>(history_.size()) > config_.history) history_.pop_front();
     last_size_ = box.size;
 }
 
-void TargetTracker::reset(std::uint64_t, double time_s, const sensor_model::OrientedBox& truth) {
+void TargetTracker::reset(std::uint64_t, double time_s, const OrientedBox& truth) {
     history_.clear();
     remember(time_s, truth);
     kalman_->start(time_s, truth.centre);
@@ -132,11 +135,12 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
     }
     d.radius_m = config_.method == Method::rbnn
                      ? config_.rbnn_radius_m
-                     : vrbnn_radius_m(config_.lambda, config_.h_scan, config_.v_scan, config_.fov_deg, cal_range, config_.bias_m);
+                     : vrbnn_radius_m(config_.lambda, sensor_, cal_range, config_.bias_m);
 
     const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
+    const double divergence_rad = sensor_.divergence_mrad * 1e-3;
     std::vector<Cluster> candidates =
-        plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, config_.beam_spread_mrad * 1e-3,
+        plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, config_.footprint_divergences * divergence_rad,
                           static_cast<std::size_t>(config_.min_neighbours) + 1);
 
     // The candidate: nearest the expected position when there is one, else nearest the boresight

@@ -61,9 +61,9 @@ int rendered_point_count_at(const sensor_model::Sensor& sensor, int footprint_sa
         scene::Pose{position, scene::orientation_from_ypr_deg(180.0 + az_rad / kDeg, -el_rad / kDeg, 0.0)});
     s.scene.objects.push_back(object);
     sensor_model::FrameRenderer renderer(s);
-    const sensor_model::Frame f = renderer.render(frame);
+    const Frame f = renderer.render(frame);
     return static_cast<int>(
-        std::count_if(f.returns.begin(), f.returns.end(), [](const sensor_model::Return& r) { return r.object_id == 1; }));
+        std::count_if(f.returns.begin(), f.returns.end(), [](const Return& r) { return r.object_id == 1; }));
 }
 
 CountStatistics rendered_point_count(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,

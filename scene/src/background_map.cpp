@@ -5,9 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,13 +14,13 @@
 #include <pcl/common/eigen.h>
 #include <pcl/exceptions.h>
 #include <pcl/console/print.h>
-#include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 #include <spdlog/spdlog.h>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/pcd_file.h"
 #include "ladarsim/scene/las_file.h"
 
 namespace ladarsim::scene {
@@ -72,58 +69,11 @@ const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& cloud, const std
     return nullptr;
 }
 
-/// PCL's reader trusts the header (random bytes can crash it), so the header is checked first:
-/// only PCD keywords before DATA, one SIZE, TYPE and COUNT per field, and a point count.
-void check_pcd_header(const std::filesystem::path& file) {
+/// Reads a PLY file with PCL's reader (PCD files have our own, read_pcd; PLY keeps PCL's until
+/// a map needs more than it offers). PCL reports its failures on stderr: silenced, ours is the
+/// one clear line.
+pcl::PCLPointCloud2 read_ply(const std::filesystem::path& file) {
     const std::string name = file.string();
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(name, "(file)", "cannot open the file");
-    std::size_t fields = 0;
-    bool has_size = false, has_type = false, has_points = false;
-    std::string line;
-    for (int line_number = 1; line_number <= 64 && std::getline(in, line); ++line_number) {
-        const auto bad = [&](const std::string& problem) {
-            throw InputError(name, "header line " + std::to_string(line_number), "not a PCD file: " + problem);
-        };
-        if (line.size() > 4096) bad("line too long");
-        std::istringstream words(line);
-        std::string key;
-        words >> key;
-        if (key.empty() || key[0] == '#') continue;
-        const std::vector<std::string> values{std::istream_iterator<std::string>(words), {}};
-        if (key == "VERSION" || key == "VIEWPOINT" || key == "WIDTH" || key == "HEIGHT") continue;
-        if (key == "FIELDS") {
-            fields = values.size();
-        } else if (key == "SIZE" || key == "TYPE" || key == "COUNT") {
-            if (fields == 0 || values.size() != fields) bad(key + " needs one entry per field, after FIELDS");
-            has_size = has_size || key == "SIZE";
-            has_type = has_type || key == "TYPE";
-        } else if (key == "POINTS") {
-            has_points = values.size() == 1 && values[0].find_first_not_of("0123456789") == std::string::npos;
-            if (!has_points) bad("POINTS needs one whole number");
-        } else if (key == "DATA") {
-            if (values.size() != 1 || (values[0] != "ascii" && values[0] != "binary" && values[0] != "binary_compressed")) {
-                bad("DATA must be ascii, binary or binary_compressed");
-            }
-            if (!has_size || !has_type || !has_points) bad("FIELDS, SIZE, TYPE and POINTS must come before DATA");
-            return;
-        } else {
-            bad("unexpected \"" + key.substr(0, 32) + "\"");
-        }
-    }
-    throw InputError(name, "(header)", "not a PCD file: no DATA line in the first 64 lines");
-}
-
-/// Reads a PCD or PLY file (by extension) with PCL's own reader, which reports its failures on
-/// stderr: silenced, ours is the one clear line.
-pcl::PCLPointCloud2 read_point_cloud(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    if (!std::filesystem::is_regular_file(file)) throw InputError(name, "(file)", "no such file");
-    std::string extension = file.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    const bool ply = extension == ".ply";
-    const std::string kind = ply ? "PLY" : "PCD";
-    if (!ply) check_pcd_header(file);
     pcl::PCLPointCloud2 cloud;
     int status = -1;
     const pcl::console::VERBOSITY_LEVEL verbosity = pcl::console::getVerbosityLevel();
@@ -133,14 +83,14 @@ pcl::PCLPointCloud2 read_point_cloud(const std::filesystem::path& file) {
         ~Restore() { pcl::console::setVerbosityLevel(level); }
     } restore{verbosity};
     try {
-        status = ply ? pcl::io::loadPLYFile(name, cloud) : pcl::io::loadPCDFile(name, cloud);
+        status = pcl::io::loadPLYFile(name, cloud);
     } catch (const pcl::PCLException& e) {
-        throw InputError(name, "(file)", "not a readable " + kind + " file: " + e.what());
+        throw InputError(name, "(file)", std::string("not a readable PLY file: ") + e.what());
     }
-    if (status < 0) throw InputError(name, "(file)", "not a readable " + kind + " file");
+    if (status < 0) throw InputError(name, "(file)", "not a readable PLY file");
     const std::size_t n = std::size_t{cloud.width} * cloud.height;
     if (cloud.data.size() < n * cloud.point_step) {
-        throw InputError(name, "(file)", kind + " data is shorter than its header says");
+        throw InputError(name, "(file)", "PLY data is shorter than its header says");
     }
     return cloud;
 }
@@ -204,12 +154,16 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
         map.points_world.push_back(options.scale * p + options.offset_m);
         if (i) intensity.push_back(std::isfinite(*i) ? std::max(*i, 0.0) : 0.0);
     };
-    if (file.extension() == ".las" || file.extension() == ".LAS") {
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".las") {
         const LasCloud las = read_las(file);
         map.points_world.reserve(las.points.size());
         for (std::size_t i = 0; i < las.points.size(); ++i) add(las.points[i], double(las.intensity[i]));
-    } else {
-        const pcl::PCLPointCloud2 cloud2 = read_point_cloud(file);
+    } else if (!std::filesystem::is_regular_file(file)) {
+        throw InputError(name, "(file)", "no such file");
+    } else if (extension == ".ply") {
+        const pcl::PCLPointCloud2 cloud2 = read_ply(file);
         const pcl::PCLPointField* fx = find_field(cloud2, "x");
         const pcl::PCLPointField* fy = find_field(cloud2, "y");
         const pcl::PCLPointField* fz = find_field(cloud2, "z");
@@ -222,6 +176,15 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
         map.points_world.reserve(n_file);
         for (std::size_t i = 0; i < n_file; ++i)
             add(Eigen::Vector3d(x(i), y(i), z(i)), intensity_of ? std::optional<double>((*intensity_of)(i)) : std::nullopt);
+    } else {
+        const PcdCloud cloud = read_pcd(file);
+        const std::size_t x = *cloud.field("x"), y = *cloud.field("y"), z = *cloud.field("z");
+        const std::optional<std::size_t> i_field = cloud.field("intensity");
+        map.points_world.reserve(cloud.points());
+        for (std::uint64_t i = 0; i < cloud.points(); ++i) {
+            add(Eigen::Vector3d(cloud.value(i, x), cloud.value(i, y), cloud.value(i, z)),
+                i_field ? std::optional<double>(cloud.value(i, *i_field)) : std::nullopt);
+        }
     }
     const std::size_t n = map.points_world.size();
     rep.points_loaded = n;

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 
 namespace ladarsim::scene {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <system_error>
 
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/gltf_writer.h"
-#include "ladarsim/scene/input_error.h"
 
 namespace ladarsim::scene {
 namespace {

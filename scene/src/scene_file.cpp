@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/background_map.h"
 #include "ladarsim/scene/gltf_loader.h"
-#include "ladarsim/scene/input_error.h"
 
 namespace ladarsim::scene {
 

@@ -2,8 +2,8 @@
 
 #include <limits>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_fields.h"
 #include "ladarsim/scene/scene_file.h"
 #include "ladarsim/scene/trajectory.h"
 #include "scenario_document.h"

@@ -4,8 +4,8 @@
 #include <set>
 #include <string>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::sensor_model {
 

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "ladarsim/sensor_model/json_file.h"
+#include "ladarsim/dataset/json_file.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 
 namespace ladarsim::sensor_model {

@@ -4,7 +4,7 @@
 
 using ladarsim::detect::axis_aligned_iou;
 using ladarsim::detect::centre_distance_m;
-using ladarsim::sensor_model::OrientedBox;
+using ladarsim::OrientedBox;
 
 namespace {
 OrientedBox box(double x, double y, double z, double sx, double sy, double sz) {

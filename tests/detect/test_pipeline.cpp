@@ -2,14 +2,20 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
 
 #include "ladarsim/detect/background_subtraction.h"
 #include "ladarsim/detect/clustering.h"
 #include "ladarsim/detect/tracker.h"
 
 using namespace ladarsim::detect;
+using ladarsim::SensorGeometry;
 
 namespace {
+
+/// The paper's raster: 150 x 20 beams over 0.5 x 0.5 deg, 0.62 mrad beams.
+const SensorGeometry kPaperSensor{
+    .beams_az = 150, .beams_el = 20, .field_az_deg = 0.5, .field_el_deg = 0.5, .divergence_mrad = 0.62};
 
 /// A grid of points on a plane x = `x`, spacing `step`, `n` x `n`.
 Points wall(float x, float step, int n) {
@@ -63,10 +69,21 @@ TEST_CASE("RBNN: a radius above the point spacing recovers a planted cluster, on
 
 TEST_CASE("V-RBNN radius: Algorithm 1's formula, and the lambda that reaches one line pitch", "[detect]") {
     // lambda / (h v) tan(FOV) R + bias with the paper's constants at 600 m: 2.2 cm.
-    CHECK(vrbnn_radius_m(7.0, 150, 20, 0.5, 600.0, 0.01) == Approx(7.0 / 3000.0 * std::tan(0.5 * M_PI / 180.0) * 600.0 + 0.01));
-    CHECK(vrbnn_radius_m(7.0, 150, 20, 0.5, 600.0, 0.01) == Approx(0.0222).margin(1e-4));
+    CHECK(vrbnn_radius_m(7.0, kPaperSensor, 600.0, 0.01) == 7.0 / 3000.0 * std::tan(0.5 * M_PI / 180.0) * 600.0 + 0.01);
+    CHECK(vrbnn_radius_m(7.0, kPaperSensor, 600.0, 0.01) == Approx(0.0222).margin(1e-4));
     // lambda = h_scan makes the radius tan(FOV) R / v_scan: one elevation line pitch.
-    CHECK(vrbnn_radius_m(150.0, 150, 20, 0.5, 600.0, 0.0) == Approx(std::tan(0.5 * M_PI / 180.0) * 600.0 / 20.0));
+    CHECK(vrbnn_radius_m(150.0, kPaperSensor, 600.0, 0.0) == Approx(std::tan(0.5 * M_PI / 180.0) * 600.0 / 20.0));
+}
+
+TEST_CASE("V-RBNN radius: FOV is the smaller field angle, so a spinning head's 360 deg stays finite", "[detect]") {
+    // The VLP-16: 1800 x 16 beams over 360 x 32 deg; tan(32 deg) decides, whichever axis it is on.
+    const SensorGeometry vlp16{
+        .beams_az = 1800, .beams_el = 16, .field_az_deg = 360.0, .field_el_deg = 32.0, .divergence_mrad = 3.0};
+    const double expected = 7.0 / (1800.0 * 16.0) * std::tan(32.0 * M_PI / 180.0) * 50.0 + 0.01;
+    CHECK(vrbnn_radius_m(7.0, vlp16, 50.0, 0.01) == Approx(expected));
+    SensorGeometry turned = vlp16;
+    std::swap(turned.field_az_deg, turned.field_el_deg);
+    CHECK(vrbnn_radius_m(7.0, turned, 50.0, 0.01) == Approx(expected));
 }
 
 TEST_CASE("outlier removal keeps points with nMin neighbours; boxes over 1 m are occlusions", "[detect]") {
@@ -92,7 +109,7 @@ TEST_CASE("the tracker predicts a straight track through dropped frames (FIR) an
     DetectorConfig config;
     config.method = Method::vrbnn;
     config.lambda = 180.0;
-    TargetTracker tracker(config, {});
+    TargetTracker tracker(config, kPaperSensor, {});
     const Eigen::Vector3d velocity(-15.0, 0.5, -0.2);
     const Eigen::Vector3d start(600.0, 30.0, 22.0);
     for (int k = 0; k < 20; ++k) {
@@ -109,7 +126,7 @@ TEST_CASE("the tracker predicts a straight track through dropped frames (FIR) an
 }
 
 TEST_CASE("an empty cloud is no detection, not a crash", "[detect]") {
-    TargetTracker tracker(DetectorConfig{}, {});
+    TargetTracker tracker(DetectorConfig{}, kPaperSensor, {});
     const Detection d = tracker.process(0, 0.0, {});
     CHECK_FALSE(d.found);
     CHECK_FALSE(d.predicted);

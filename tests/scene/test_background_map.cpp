@@ -8,12 +8,17 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/background_map.h"
-#include "ladarsim/scene/input_error.h"
 
 using namespace ladarsim::scene;
 using ladarsim::InputError;
@@ -315,6 +320,41 @@ TEST_CASE("background_map: a PLY map, ASCII or binary, is the same map as its PC
     CHECK_THROWS_WITH(load_background_map(dir.path / "broken.ply", {}), Contains("broken.ply"));
 }
 
+TEST_CASE("background_map: a map in any PCD encoding, organised with NaN beams, is the same map", "[background_map]") {
+    // The PCD reader is read_pcd (tests/dataset/test_pcd_file.cpp): here only that the map uses
+    // what it reads, whatever encoding PCL wrote.
+    TempDir dir;
+    const auto pts = grid(12, 9, 0.7, 0.5, 0.1, -0.05, 40.0);
+    pcl::PointCloud<pcl::PointXYZI> organised(12, 10);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        organised[i].x = static_cast<float>(pts[i].x);
+        organised[i].y = static_cast<float>(pts[i].y);
+        organised[i].z = static_cast<float>(pts[i].z);
+        organised[i].intensity = static_cast<float>(i % 50);
+    }
+    for (std::size_t i = pts.size(); i < organised.size(); ++i) organised[i].x = std::numeric_limits<float>::quiet_NaN();
+    organised.is_dense = false;
+    REQUIRE(pcl::io::savePCDFileASCII((dir.path / "a.pcd").string(), organised) == 0);
+    REQUIRE(pcl::io::savePCDFileBinary((dir.path / "b.pcd").string(), organised) == 0);
+    REQUIRE(pcl::io::savePCDFileBinaryCompressed((dir.path / "c.pcd").string(), organised) == 0);
+    BackgroundLoadReport binary_report;
+    const BackgroundMap binary = load_background_map(dir.path / "b.pcd", {}, &binary_report);
+    CHECK(binary_report.nonfinite_dropped == 12);
+    REQUIRE(binary.points_world.size() == pts.size());
+    BackgroundLoadReport report;
+    const BackgroundMap compressed = load_background_map(dir.path / "c.pcd", {}, &report);
+    CHECK(report.nonfinite_dropped == 12);
+    CHECK(compressed.points_world == binary.points_world);
+    CHECK(compressed.normals == binary.normals);
+    CHECK(compressed.radii_m == binary.radii_m);
+    CHECK(compressed.reflectance == binary.reflectance);
+    // PCL writes ascii floats to 8 digits, not always enough to come back to the same float.
+    const BackgroundMap ascii = load_background_map(dir.path / "a.pcd", {}, &report);
+    CHECK(report.nonfinite_dropped == 12);
+    REQUIRE(ascii.points_world.size() == pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) CHECK((ascii.points_world[i] - binary.points_world[i]).norm() < 1e-5);
+}
+
 TEST_CASE("background_map: bad files are InputErrors naming the file", "[background_map]") {
     TempDir dir;
     SECTION("missing") {
@@ -325,51 +365,6 @@ TEST_CASE("background_map: bad files are InputErrors naming the file", "[backgro
         } catch (const InputError& e) {
             CHECK(e.file() == file.string());
             CHECK_THAT(e.problem(), Contains("no such file"));
-        }
-    }
-    SECTION("garbage bytes") {
-        const fs::path file = dir.path / "garbage.pcd";
-        {
-            std::ofstream out(file, std::ios::binary);
-            std::mt19937 rng(7);
-            for (int i = 0; i < 4096; ++i) out.put(static_cast<char>(rng() & 0xFF));
-        }
-        try {
-            load_background_map(file, {});
-            FAIL("no error");
-        } catch (const InputError& e) {
-            CHECK(e.file() == file.string());
-        }
-    }
-    SECTION("a binary PCD cut short") {
-        const fs::path file = dir.path / "short.pcd";
-        {
-            std::ofstream out(file, std::ios::binary);
-            out << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1000\n"
-                   "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1000\nDATA binary\n";
-            const float xyz[3] = {1.0f, 2.0f, 3.0f};
-            for (int i = 0; i < 10; ++i) out.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
-        }
-        try {
-            load_background_map(file, {});
-            FAIL("no error");
-        } catch (const InputError& e) {
-            CHECK(e.file() == file.string());
-        }
-    }
-    SECTION("no z field") {
-        const fs::path file = dir.path / "xy.pcd";
-        {
-            std::ofstream out(file);
-            out << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 5\nHEIGHT 1\n"
-                   "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 5\nDATA ascii\n1 2\n3 4\n5 6\n7 8\n9 10\n";
-        }
-        try {
-            load_background_map(file, {});
-            FAIL("no error");
-        } catch (const InputError& e) {
-            CHECK(e.file() == file.string());
-            CHECK_THAT(e.problem(), Contains("x, y and z"));
         }
     }
     SECTION("too few points") {

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/gltf_loader.h"
-#include "ladarsim/scene/input_error.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;

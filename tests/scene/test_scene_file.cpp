@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "ladarsim/scene/input_error.h"
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_fields.h"
 #include "ladarsim/scene/scene_file.h"
 
 using namespace ladarsim::scene;

@@ -8,6 +8,7 @@
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "../support/atmospheres.h"
 
+using namespace ladarsim;
 using namespace ladarsim::sensor_model;
 
 namespace {

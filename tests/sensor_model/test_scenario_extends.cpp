@@ -5,8 +5,8 @@
 
 #include <fstream>
 
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/gltf_writer.h"
-#include "ladarsim/scene/input_error.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "../support/scratch_dir.h"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <set>
 
-#include "ladarsim/sensor_model/dataset.h"
+#include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/pcd_file.h"
+#include "ladarsim/sensor_model/render_dataset.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;

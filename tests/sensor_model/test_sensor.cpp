@@ -5,7 +5,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "ladarsim/scene/input_error.h"
+#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sensor.h"

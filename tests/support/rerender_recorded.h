@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/pcd_file.h"
+#include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "scratch_dir.h"
 
@@ -54,10 +54,9 @@ inline std::ostream& operator<<(std::ostream& out, const RerenderFigures& f) {
 /// (a scenario's "sensor" object: preset or file, plus overrides) at that origin and renders one
 /// noise-free frame (render settings `render` added, e.g. footprint_samples); then finds each
 /// recorded return's rendered one by `matching`.
-inline RerenderFigures rerender_recorded(const ScratchDir& dir, const sensor_model::Frame& recorded, nlohmann::json sensor,
+inline RerenderFigures rerender_recorded(const ScratchDir& dir, const Frame& recorded, nlohmann::json sensor,
                                          ReturnMatching matching, const nlohmann::json& render = nlohmann::json::object()) {
-    using sensor_model::Return;
-    sensor_model::write_frame_pcd(dir / "recorded.pcd", recorded);
+    write_frame_pcd(dir / "recorded.pcd", recorded);
     sensor["position_m"] = {0, 0, 0};
     nlohmann::json scenario = {
         {"sensor", sensor},
@@ -68,7 +67,7 @@ inline RerenderFigures rerender_recorded(const ScratchDir& dir, const sensor_mod
     const sensor_model::Scenario s = sensor_model::load_scenario(dir / "scene.json");
     sensor_model::FrameRenderer renderer(s);
     const auto start = std::chrono::steady_clock::now();
-    const sensor_model::Frame rendered = renderer.render(0);
+    const Frame rendered = renderer.render(0);
     RerenderFigures figures;
     figures.render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     figures.rendered = rendered.returns.size();

@@ -3,22 +3,27 @@
 // rejection of boxes too large to be the target.
 #include <vector>
 
+#include "ladarsim/dataset/manifest.h"
 #include "ladarsim/detect/point_cloud.h"
 
 namespace ladarsim::detect {
 
 struct Cluster {
     Points points;
-    sensor_model::OrientedBox box;  ///< axis-aligned in the sensor frame
+    OrientedBox box;  ///< axis-aligned in the sensor frame
 };
 
 /// RBNN (Klasing et al. 2008): points closer than `radius_m` are linked; clusters are the
 /// connected components (PCL k-d tree radius searches, union-find), largest first.
 std::vector<Cluster> rbnn(const Points& points, double radius_m);
 
-/// The V-RBNN radius of Algorithm 1: lambda / (h_scan * v_scan) * tan(FOV * pi / 180) * range + bias,
-/// range in metres, FOV in degrees.
-double vrbnn_radius_m(double lambda, int h_scan, int v_scan, double fov_deg, double range_m, double bias_m);
+/// The V-RBNN radius of Algorithm 1: lambda / (h_scan v_scan) tan(FOV pi / 180) range + bias, range
+/// in metres, FOV in degrees. The paper's sensor has a square field (0.5 x 0.5 deg, 150 x 20 beams),
+/// so which field angle FOV is does not arise there. Here h_scan = beams_az, v_scan = beams_el and
+/// FOV = the smaller of the two field angles: the paper's numbers are unchanged, and a spinning
+/// head's 360 deg of azimuth (tan 360 deg = 0; past 90 deg the tangent is meaningless) leaves the
+/// radius to its elevation field.
+double vrbnn_radius_m(double lambda, const SensorGeometry& sensor, double range_m, double bias_m);
 
 /// Keeps the points with at least `min_neighbours` other points within `radius_m` (PCL's
 /// RadiusOutlierRemoval; with Debian's PCL 1.13 the query point itself is not counted).

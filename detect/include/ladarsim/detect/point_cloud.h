@@ -5,16 +5,16 @@
 
 #include <Eigen/Core>
 
-#include "ladarsim/sensor_model/frame.h"
+#include "ladarsim/dataset/frame.h"
 
 namespace ladarsim::detect {
 
 using Points = std::vector<Eigen::Vector3f>;
 
 /// Positions of a frame's returns (sensor frame, metres).
-Points positions_of(const std::vector<sensor_model::Return>& returns);
+Points positions_of(const std::vector<Return>& returns);
 
 /// The axis-aligned box of some points, as an OrientedBox with identity orientation.
-sensor_model::OrientedBox bounding_box(const Points& points);
+OrientedBox bounding_box(const Points& points);
 
 }  // namespace ladarsim::detect

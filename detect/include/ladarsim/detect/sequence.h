@@ -8,12 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/detect/tracker.h"
-#include "ladarsim/sensor_model/ground_truth_file.h"
 
 namespace ladarsim::detect {
 
 struct Sequence {
+    SensorGeometry sensor;  ///< from manifest.json
     std::vector<std::uint64_t> frame_index;
     std::vector<double> time_s;
     std::vector<Points> frames;
@@ -21,11 +22,12 @@ struct Sequence {
     /// Per frame, the unit direction of the gimbal's pointing from manifest.json (the radar cue),
     /// when the dataset has one.
     std::vector<std::optional<Eigen::Vector3d>> boresight;
-    std::vector<sensor_model::FrameGroundTruth> truth;  ///< empty when there is no ground_truth.json
+    std::vector<FrameGroundTruth> truth;  ///< empty when there is no ground_truth.json
 };
 
-/// Reads DIR/frames/*.pcd (in name order), DIR/background.pcd and DIR/ground_truth.json when
-/// present. Throws InputError for a missing directory, no frames, or a malformed file.
+/// Reads DIR/manifest.json, DIR/frames/*.pcd (in name order), and DIR/background.pcd and
+/// DIR/ground_truth.json when present. Throws InputError for a missing directory, no frames, a
+/// manifest that does not say which sensor took the frames (read_manifest), or a malformed file.
 Sequence load_sequence(const std::filesystem::path& dir);
 
 /// The id of the first drone in the ground truth (the target to score), if any.
@@ -33,7 +35,7 @@ std::optional<std::uint32_t> default_target(const Sequence& s);
 
 /// The ground-truth box of `target` in frame i, as the axis-aligned box enclosing it in the
 /// sensor frame (the detector's boxes are axis-aligned there).
-std::optional<sensor_model::OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target);
+std::optional<OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target);
 
 /// Algorithm 1 over every frame, as a deployed detector would run it.
 std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config);

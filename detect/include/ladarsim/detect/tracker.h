@@ -24,15 +24,13 @@ struct DetectorConfig {
     double rbnn_radius_m = 0.2;      ///< RBNN's fixed radius
     double lambda = 7.0;             ///< V-RBNN, Algorithm 1's defaults
     double bias_m = 0.01;
-    int h_scan = 150;
-    int v_scan = 20;
-    double fov_deg = 0.5;
     double background_resolution_m = 1.0;
     int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
     double max_diagonal_m = 1.0;     ///< occlusion removal
     /// Occlusion removal also allows a footprint's width per metre of range (plausible_targets):
-    /// 1.5 x the paper's 0.62 mrad divergence.
-    double beam_spread_mrad = 0.93;
+    /// this many times the sensor's divergence, the width of a footprint truncated at 1.5 1/e^2
+    /// radii (0.93 mrad for the paper's 0.62 mrad beam: 1.9 m at 2 km).
+    double footprint_divergences = 1.5;
     /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000.
     /// Read as millimetres that is 1 m between frames, 20 m/s at 20 Hz, slower than the paper's own
     /// fast targets. Here: the chosen cluster's range may differ from the FIR prediction's by at
@@ -58,14 +56,16 @@ struct Detection {
     double time_s = 0.0;
     bool found = false;       ///< a box (from a cluster or a prediction)
     bool predicted = false;   ///< from the history, no cluster accepted
-    sensor_model::OrientedBox box;
+    OrientedBox box;
     std::size_t points = 0;   ///< in the accepted cluster
     double radius_m = 0.0;    ///< clustering radius used
 };
 
 class TargetTracker {
 public:
-    TargetTracker(const DetectorConfig& config, const Points& background_map);
+    /// `sensor`: the raster the frames were scanned with (V-RBNN's radius and the footprint
+    /// allowance of occlusion removal scale with it).
+    TargetTracker(const DetectorConfig& config, const SensorGeometry& sensor, const Points& background_map);
     ~TargetTracker();
 
     /// `boresight`: the unit direction the sensor was pointing (the radar cue), used to pick the
@@ -73,14 +73,15 @@ public:
     Detection process(std::uint64_t frame, double time_s, const Points& points,
                       const std::optional<Eigen::Vector3d>& boresight = std::nullopt);
     /// Re-initialises the history on a known box (VOT's reset after a failure).
-    void reset(std::uint64_t frame, double time_s, const sensor_model::OrientedBox& truth);
+    void reset(std::uint64_t frame, double time_s, const OrientedBox& truth);
 
 private:
     struct Kalman;
     std::optional<Eigen::Vector3d> fir_prediction(double time_s) const;
-    void remember(double time_s, const sensor_model::OrientedBox& box);
+    void remember(double time_s, const OrientedBox& box);
 
     DetectorConfig config_;
+    SensorGeometry sensor_;
     BackgroundSubtractor background_;
     std::deque<std::pair<double, Eigen::Vector3d>> history_;  ///< (time, centre) of accepted boxes
     Eigen::Vector3d last_size_ = Eigen::Vector3d::Constant(0.3);

@@ -56,9 +56,9 @@ struct BackgroundLoadReport {
 inline constexpr double kMinRadiusOfMedian = 0.25;
 inline constexpr double kMaxRadiusOfMedian = 3.0;
 
-/// Reads a PCD or PLY file (fields or vertex properties x y z, optional intensity; any numeric
-/// type; ASCII or binary) or an uncompressed LAS file (formats 0-3, 6-8; intensity used) into a
-/// BackgroundMap:
+/// Reads a PCD file (any read_pcd reads: fields x y z, optional intensity), a PLY file (vertex
+/// properties x y z, optional intensity; any numeric type; ASCII or binary) or an uncompressed LAS
+/// file (formats 0-3, 6-8; intensity used) into a BackgroundMap:
 /// points offset into the world (double precision), unit normals from a least-squares plane
 /// through the `normal_neighbours` nearest points, flipped to point up (+z) because the map is an
 /// airborne, top-down scan; disc radii as above; reflectance from intensity when the file has it

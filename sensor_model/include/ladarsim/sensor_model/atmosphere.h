@@ -3,7 +3,7 @@
 #include <limits>
 #include <string>
 
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/json_fields.h"
 
 namespace ladarsim::sensor_model {
 

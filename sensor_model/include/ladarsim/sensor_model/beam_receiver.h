@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "ladarsim/dataset/frame.h"
 #include "ladarsim/sensor_model/apd_receiver.h"
 #include "ladarsim/sensor_model/atmosphere.h"
 #include "ladarsim/sensor_model/counter_random.h"
-#include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/sensor.h"
 #include "ladarsim/sensor_model/waveform.h"
 

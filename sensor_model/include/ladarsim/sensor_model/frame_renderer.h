@@ -4,10 +4,10 @@
 #include <memory>
 #include <vector>
 
+#include "ladarsim/dataset/frame.h"
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/sensor_model/beam_receiver.h"
 #include "ladarsim/sensor_model/footprint_integrator.h"
-#include "ladarsim/sensor_model/frame.h"
 #include "ladarsim/sensor_model/scan_pattern.h"
 #include "ladarsim/sensor_model/gimbal.h"
 #include "ladarsim/sensor_model/scenario.h"

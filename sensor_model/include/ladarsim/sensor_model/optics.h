@@ -2,7 +2,7 @@
 // The receiving telescope and filter: how much of the echo and of the sunlit scene reach the detector.
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/json_fields.h"
 
 namespace ladarsim::sensor_model {
 

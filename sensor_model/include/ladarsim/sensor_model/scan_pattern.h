@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/json_fields.h"
 
 namespace ladarsim::sensor_model {
 

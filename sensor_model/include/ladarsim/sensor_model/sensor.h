@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/json_fields.h"
 #include "ladarsim/sensor_model/gimbal.h"
 #include "ladarsim/sensor_model/optics.h"
 #include "ladarsim/sensor_model/receiver.h"

@@ -2,7 +2,7 @@
 // The laser: what leaves the sensor with every pulse.
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/scene/json_fields.h"
+#include "ladarsim/dataset/json_fields.h"
 
 namespace ladarsim::sensor_model {
 

@@ -1,0 +1,34 @@
+#pragma once
+// Where every object really was, frame by frame: the reference detect/ is scored against.
+//   {"frames": [{"index", "start_time_s", "end_time_s",
+//                "objects": [{"id", "class", "name", "time_s", "returns",
+//                             "box_world":  {"centre_m": [x, y, z], "size_m": [x, y, z],
+//                                            "orientation_wxyz": [w, x, y, z]},
+//                             "box_sensor": {...}}]}]}
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "ladarsim/dataset/frame.h"
+
+namespace ladarsim {
+
+/// One frame's ground truth without its returns, so a renderer can keep every frame's truth
+/// until the end of a run and write it once.
+struct FrameGroundTruth {
+    std::uint64_t index = 0;
+    double start_time_s = 0.0;
+    double end_time_s = 0.0;
+    std::vector<GroundTruthObject> objects;
+};
+
+FrameGroundTruth ground_truth_of(const Frame& frame);
+
+/// Atomic (see AtomicFile).
+void write_ground_truth_json(const std::filesystem::path& path, const std::vector<FrameGroundTruth>& frames);
+
+/// Throws InputError naming the file and the field path (e.g. "frames[3].objects[0].box_world.size_m")
+/// of the first missing, mistyped, out-of-range or unknown field.
+std::vector<FrameGroundTruth> read_ground_truth_json(const std::filesystem::path& path);
+
+}  // namespace ladarsim

@@ -1,0 +1,39 @@
+#pragma once
+// What a dataset's manifest.json tells its readers (detection, the viewer) about how its frames
+// were taken: the sensor's geometry and, per frame, where the gimbal pointed.
+//   {"sensor": {..., "derived": {"beams_az", "beams_el", "field_az_deg", "field_el_deg",
+//                                "divergence_mrad", ...}},
+//    "frames": [{"index", ..., "gimbal_az_rad", "gimbal_el_rad"}, ...], ...}
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+namespace ladarsim {
+
+/// The raster a frame was scanned with, as detection sizes its clustering and its boxes by it.
+struct SensorGeometry {
+    int beams_az = 0;              ///< beams per line (columns)
+    int beams_el = 0;              ///< lines per frame (rows)
+    double field_az_deg = 0.0;     ///< full field of the raster in azimuth
+    double field_el_deg = 0.0;
+    double divergence_mrad = 0.0;  ///< full angle at the 1/e^2 irradiance radius, the wider axis
+};
+
+/// Gimbal pointing (of the field centre) at a frame's start, radians, sensor frame.
+struct FramePointing {
+    double gimbal_az_rad = 0.0;
+    double gimbal_el_rad = 0.0;
+};
+
+struct Manifest {
+    SensorGeometry sensor;
+    /// Per frame, in the manifest's order; empty where the frame records none (recorded frames).
+    std::vector<std::optional<FramePointing>> pointing;
+};
+
+/// Reads `sensor.derived` and `frames` of a manifest.json; keys it does not need are ignored.
+/// Throws InputError naming the file and the field for a missing file, a manifest without
+/// `sensor.derived` (the field named in both cases), or a missing or mistyped value.
+Manifest read_manifest(const std::filesystem::path& file);
+
+}  // namespace ladarsim

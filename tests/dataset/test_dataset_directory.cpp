@@ -1,0 +1,85 @@
+// Dataset directories: which existing paths may be replaced, staging and the final swap, and a
+// recorded dataset as detect/ reads it.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "ladarsim/dataset/dataset_directory.h"
+#include "ladarsim/dataset/frame_pcd.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/dataset/manifest.h"
+#include "../support/input_error_of.h"
+#include "../support/scratch_dir.h"
+
+using namespace ladarsim;
+using ladarsim::test::ScratchDir;
+
+TEST_CASE("an absent, empty or earlier dataset directory may be replaced; anything else is refused", "[dataset_directory]") {
+    const ScratchDir dir;
+    CHECK(checked_dataset_dir(dir / "new") == dir / "new");
+    CHECK(checked_dataset_dir((dir / "new").string() + "/") == dir / "new");
+    std::filesystem::create_directories(dir / "empty");
+    CHECK(checked_dataset_dir(dir / "empty") == dir / "empty");
+    std::filesystem::create_directories(dir / "earlier");
+    std::ofstream(dir / "earlier" / "manifest.json") << "{}";
+    CHECK(checked_dataset_dir(dir / "earlier") == dir / "earlier");
+
+    std::filesystem::create_directories(dir / "photos");
+    std::ofstream(dir / "photos" / "holiday.jpg") << "not ours";
+    const InputError e = test::input_error_of([&] { checked_dataset_dir(dir / "photos"); });
+    CHECK(e.file() == (dir / "photos").string());
+    CHECK(e.field() == "--out");
+    CHECK_THAT(e.problem(), Catch::Contains("refusing to replace"));
+    std::ofstream(dir / "file") << "x";
+    CHECK(test::input_error_of([&] { checked_dataset_dir(dir / "file"); }).field() == "--out");
+}
+
+TEST_CASE("the staging directory replaces the dataset and leaves nothing beside it", "[dataset_directory]") {
+    const ScratchDir dir;
+    const auto out = dir / "run";
+    CHECK(staging_dir(out) == dir / "run.partial");
+    std::filesystem::create_directories(out);
+    std::ofstream(out / "stale.pcd") << "old";
+    std::filesystem::create_directories(staging_dir(out));
+    std::ofstream(staging_dir(out) / "manifest.json") << "{}";
+    swap_in_dataset(staging_dir(out), out);
+    CHECK(std::filesystem::exists(out / "manifest.json"));
+    CHECK_FALSE(std::filesystem::exists(out / "stale.pcd"));
+    CHECK_FALSE(std::filesystem::exists(staging_dir(out)));
+    CHECK_FALSE(std::filesystem::exists(dir / "run.old"));
+}
+
+TEST_CASE("a recorded dataset: its frames, and a manifest naming the source and the sensor", "[dataset_directory]") {
+    const ScratchDir dir;
+    std::vector<Frame> frames(2);
+    frames[1].index = 1;
+    frames[1].start_time_s = 0.1;
+    frames[1].end_time_s = 0.2;
+    Return r;
+    r.position_sensor = {1.0f, 2.0f, 3.0f};
+    frames[1].returns = {r, r};
+    const nlohmann::json sensor = {{"preset", "recorder"},
+                                   {"derived", {{"beams_az", 1800}, {"beams_el", 16}, {"field_az_deg", 360.0},
+                                                {"field_el_deg", 32.0}, {"divergence_mrad", 3.0}}}};
+    write_recorded_dataset(frames, sensor, dir / "rec", dir / "capture.pcap");
+    CHECK(read_frame_pcd(dir / "rec" / "frames" / "000000.pcd").empty());
+    CHECK(read_frame_pcd(dir / "rec" / "frames" / "000001.pcd").size() == 2);
+    const nlohmann::json manifest = read_json(dir / "rec" / "manifest.json");
+    CHECK(manifest.at("sensor") == sensor);
+    CHECK(manifest.at("recorded_from") == (dir / "capture.pcap").string());
+    CHECK(manifest.at("frames").at(1).at("returns") == 2);
+    CHECK(manifest.at("software").at("name") == "ladarsim");
+    CHECK_FALSE(std::filesystem::exists(dir / "rec.partial"));
+    // What detect/ needs of it: the sensor's geometry, and no gimbal pointing for recorded frames.
+    const Manifest m = read_manifest(dir / "rec" / "manifest.json");
+    CHECK(m.sensor.beams_az == 1800);
+    CHECK(m.pointing.size() == 2);
+    CHECK_FALSE(m.pointing[1]);
+
+    std::filesystem::create_directories(dir / "photos");
+    std::ofstream(dir / "photos" / "holiday.jpg") << "not ours";
+    CHECK_THROWS_AS(write_recorded_dataset(frames, sensor, dir / "photos", dir / "capture.pcap"), InputError);
+    CHECK(std::filesystem::exists(dir / "photos" / "holiday.jpg"));
+}
