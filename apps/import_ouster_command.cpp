@@ -8,6 +8,7 @@
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/ouster_pcap.h"
 #include "ladarsim/sensor_model/ouster_sensor.h"
+#include "ladarsim/sensor_model/sensor.h"
 
 namespace ladarsim::apps {
 namespace {
@@ -27,7 +28,9 @@ struct ImportOusterCommand {
     int run() {
         const OusterCalibration calibration = read_ouster_metadata(metadata_file);
         const auto frames = read_ouster_pcap(pcap_file, calibration);
-        write_recorded_dataset(frames, sensor_model::ouster_sensor_json(calibration), out_dir, pcap_file);
+        // The manifest holds the resolved sensor with its derived geometry, which detection reads.
+        const sensor_model::Sensor sensor = sensor_model::read_sensor(sensor_model::ouster_sensor_json(calibration), metadata_file);
+        write_recorded_dataset(frames, sensor_model::to_json(sensor), out_dir, pcap_file);
         print_import_summary(frames, pcap_file, out_dir);
         return 0;
     }
