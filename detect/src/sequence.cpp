@@ -79,11 +79,17 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
     SupervisedRun run;
     TargetTracker tracker(config, s.sensor, s.background);
     std::size_t reinit_at = 0;
+    // Re-initialised on the ground truth, the tracker can predict that very box from its history
+    // for ever: a prediction scores only once a detection since the last (re-)initialisation has
+    // confirmed the track, so a tracker that finds nothing scores nothing (and fails), however
+    // still its target.
+    bool confirmed = false;
     for (std::size_t i = 0; i < s.frames.size(); ++i) {
         const auto truth = truth_box(s, i, target);
         if (!truth) throw InputError("ground_truth.json", "frames[" + std::to_string(i) + "]", "no box for the target");
         if (i == reinit_at) {
             tracker.reset(s.frame_index[i], s.time_s[i], *truth);
+            confirmed = false;
             run.iou.push_back(1.0);
             run.initialised.push_back(true);
             continue;
@@ -94,7 +100,8 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
             continue;
         }
         const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]);
-        const double iou = d.found ? axis_aligned_iou(d.box, *truth) : 0.0;
+        confirmed = confirmed || (d.found && !d.predicted);
+        const double iou = d.found && confirmed ? axis_aligned_iou(d.box, *truth) : 0.0;
         run.iou.push_back(iou);
         run.initialised.push_back(false);
         if (iou <= 0.0) {

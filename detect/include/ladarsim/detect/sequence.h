@@ -42,6 +42,8 @@ std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& 
 
 /// VOT's supervised protocol for EAO: run, and after a failure (IoU 0) skip 5 frames and
 /// re-initialise on the ground truth. Per frame: IoU and whether the tracker was (re-)initialised.
+/// A predicted box scores only after a detection has confirmed the track since the last
+/// (re-)initialisation: replaying the ground truth it was handed is not tracking.
 struct SupervisedRun {
     std::vector<double> iou;
     std::vector<bool> initialised;
