@@ -44,6 +44,7 @@ struct DetectCommand {
                                           {"bias_m", detector.bias_m}, {"resolution_m", detector.background_resolution_m},
                                           {"min_neighbours", detector.min_neighbours}, {"max_diagonal_m", detector.max_diagonal_m},
                                           {"max_speed_mps", detector.max_speed_mps}, {"min_box_m", detector.min_box_m}}},
+                              {"dataset", detect::dataset_record(sequence, dataset_dir)},
                               {"detections", nlohmann::json::array()}};
         int found = 0, predicted = 0;
         for (const auto& d : detections) {

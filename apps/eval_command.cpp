@@ -32,6 +32,7 @@ struct EvalCommand {
     int run() {
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         const nlohmann::json in = read_json(detections_file);
+        detect::check_same_dataset(in, detections_file, sequence, dataset_dir);
         if (!in.contains("supervised") || !in.contains("target"))
             throw InputError(detections_file, "supervised", "missing: the dataset had no ground truth when detect ran");
         std::vector<detect::Detection> detections;

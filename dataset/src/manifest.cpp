@@ -1,5 +1,9 @@
 #include "ladarsim/dataset/manifest.h"
 
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+
 #include <limits>
 #include <string>
 
@@ -40,6 +44,17 @@ std::optional<FramePointing> read_pointing(const nlohmann::json& frame, const st
 
 }  // namespace
 
+namespace {
+std::string file_id(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits
+    for (char c; in.get(c);) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+    return hex;
+}
+}  // namespace
+
 Manifest read_manifest(const std::filesystem::path& file) {
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) {
@@ -49,6 +64,7 @@ Manifest read_manifest(const std::filesystem::path& file) {
     const nlohmann::json json = read_json(file);
     JsonFields top(json, file.string(), "");
     Manifest m;
+    m.id = file_id(file);
     m.sensor = read_geometry(top);
     const auto& frames = top.array("frames");
     for (std::size_t i = 0; i < frames.size(); ++i) {

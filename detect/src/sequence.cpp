@@ -24,6 +24,7 @@ Sequence load_sequence(const std::filesystem::path& dir) {
     if (files.empty()) throw InputError(frames_dir.string(), "frames", "no .pcd frames");
     const Manifest manifest = read_manifest(dir / "manifest.json");
     s.sensor = manifest.sensor;
+    s.dataset_id = manifest.id;
     if (std::filesystem::exists(dir / "ground_truth.json")) s.truth = read_ground_truth_json(dir / "ground_truth.json");
     for (std::size_t i = 0; i < files.size(); ++i) {
         s.frames.push_back(positions_of(read_frame_pcd(files[i])));
@@ -161,6 +162,22 @@ nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detecti
             {"success", success},
             {"precision", precision},
             {"per_frame", per_frame}};
+}
+
+nlohmann::json dataset_record(const Sequence& s, const std::filesystem::path& dir) {
+    return {{"directory", std::filesystem::absolute(dir).lexically_normal().string()}, {"manifest_id", s.dataset_id}};
+}
+
+void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s,
+                        const std::filesystem::path& dir) {
+    const auto it = detections.find("dataset");
+    if (it == detections.end() || !it->is_object() || !it->contains("manifest_id"))
+        throw InputError(detections_file, "dataset", "missing: the file does not say which dataset it was computed on (run detect again)");
+    if (it->at("manifest_id") != s.dataset_id) {
+        throw InputError(detections_file, "dataset.manifest_id",
+                         "these detections are of " + it->value("directory", std::string("another dataset")) + " (manifest " +
+                             it->at("manifest_id").dump() + "), not of " + dir.string() + " (manifest \"" + s.dataset_id + "\")");
+    }
 }
 
 nlohmann::json to_json(const Detection& d) {

@@ -6,6 +6,7 @@
 //    "frames": [{"index", ..., "gimbal_az_rad", "gimbal_el_rad"}, ...], ...}
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace ladarsim {
@@ -26,6 +27,10 @@ struct FramePointing {
 };
 
 struct Manifest {
+    /// Which dataset this is: a 64-bit FNV-1a hash of the manifest file's bytes, in hex. Every
+    /// render and import writes a manifest of its own (time, frames, sensor), so results computed on
+    /// one dataset can be told from another's.
+    std::string id;
     SensorGeometry sensor;
     /// Per frame, in the manifest's order; empty where the frame records none (recorded frames).
     std::vector<std::optional<FramePointing>> pointing;

@@ -14,7 +14,8 @@
 namespace ladarsim::detect {
 
 struct Sequence {
-    SensorGeometry sensor;  ///< from manifest.json
+    std::string dataset_id;  ///< Manifest::id: which dataset these frames are
+    SensorGeometry sensor;   ///< from manifest.json
     std::vector<std::uint64_t> frame_index;
     std::vector<double> time_s;
     std::vector<Points> frames;
@@ -55,6 +56,14 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
 /// `interval` (from vot_length_interval), failures, success and precision curves.
 nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRun& supervised,
                         std::uint32_t target, std::pair<int, int> interval);
+
+/// What a detections file records of the dataset it was computed on: its directory and manifest id.
+nlohmann::json dataset_record(const Sequence& s, const std::filesystem::path& dir);
+/// Throws InputError(detections_file, "dataset", ...) naming both datasets when `detections` (a
+/// detections file's JSON) were computed on another dataset than `s` (read from `dir`), or do not
+/// say which.
+void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s,
+                        const std::filesystem::path& dir);
 
 nlohmann::json to_json(const Detection& d);
 Detection detection_from_json(const nlohmann::json& j);
