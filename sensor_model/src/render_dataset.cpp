@@ -46,15 +46,22 @@ nlohmann::json render_json(const RenderSettings& r) {
             {"footprint_truncation", r.footprint_truncation}};
 }
 
-/// The initial map Algorithm 1 subtracts: a survey of the static scene alone (moving objects
-/// removed, noise off) over every direction the frames looked, with beams at half the sensor's
+/// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
+/// and the objects that do not move, never a drone, bird or aircraft; noise off) over every direction the frames looked, with beams at half the sensor's
 /// pitch so that a static surface's returns in any frame fall among the survey's points. One
 /// centre sub-ray per beam: the map holds surfaces, not footprints. Returns the number of
 /// points, 0 (and no file) when the scene has nothing static.
 std::size_t write_background_map(const Scenario& scenario, const std::vector<GimbalPointing>& pointings,
                                  const std::filesystem::path& file) {
     Scenario survey = scenario;
-    std::erase_if(survey.scene.objects, [](const scene::SceneObject& o) { return !o.trajectory.is_static(); });
+    // What does not move, but never a target: a drone, bird or aircraft hovering still is not part
+    // of the map a detector subtracts (it would subtract the target itself).
+    std::erase_if(survey.scene.objects, [](const scene::SceneObject& o) {
+        using scene::ObjectClass;
+        const bool target = o.object_class == ObjectClass::drone || o.object_class == ObjectClass::bird ||
+                            o.object_class == ObjectClass::plane;
+        return target || !o.trajectory.is_static();
+    });
     if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) return 0;
     survey.mount.cue_object_id = 0;
     survey.render.noise = false;

@@ -6,7 +6,9 @@
 
 #include "ladarsim/dataset/manifest.h"
 #include "ladarsim/sensor_model/render_dataset.h"
+#include "ladarsim/dataset/frame_pcd.h"
 #include "../support/closed_form_scenario.h"
+#include "../support/scene_builders.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;
@@ -32,4 +34,28 @@ TEST_CASE("a rendered dataset's manifest says which sensor took it, as read_mani
     REQUIRE(m.pointing.size() == 2);
     CHECK(m.pointing[0]);
     CHECK(m.pointing[1]);
+}
+
+TEST_CASE("the initial map holds the static world only: a drone hovering still is not in it", "[render_dataset]") {
+    const test::ScratchDir dir;
+    Scenario s = test::closed_form_scenario();
+    s.file = dir / "scenario.json";
+    // A wall 300 m ahead, and a drone-sized plate hovering still 100 m ahead, both in the field.
+    scene::SceneObject wall = test::object_at(1, test::plate(40.0, 0.3), test::fixed_at(300.0, 0.0, 0.0));
+    wall.object_class = scene::ObjectClass::building;
+    scene::SceneObject drone = test::object_at(2, test::plate(0.5, 0.3), test::fixed_at(100.0, 0.0, 0.0));
+    drone.object_class = scene::ObjectClass::drone;
+    s.scene.objects = {wall, drone};
+    DatasetOptions options;
+    options.out_dir = dir / "d";
+    options.frames = 1;
+    render_dataset(s, options);
+    const std::vector<Return> map = read_frame_pcd(dir / "d" / "background.pcd");
+    const auto near_drone = std::count_if(map.begin(), map.end(), [](const Return& r) { return r.range_m < 200.0; });
+    const auto on_wall = std::count_if(map.begin(), map.end(), [](const Return& r) { return r.range_m > 299.0; });
+    CHECK(near_drone == 0);
+    CHECK(on_wall > 100);
+    // The frame itself sees the drone.
+    const std::vector<Return> frame = read_frame_pcd(dir / "d" / "frames" / "000000.pcd");
+    CHECK(std::count_if(frame.begin(), frame.end(), [](const Return& r) { return r.object_id == 2; }) > 0);
 }
