@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "ladarsim/detect/clustering.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/dataset/json_file.h"
 
@@ -23,13 +24,26 @@ struct DetectCommand {
     CLI::App* add(CLI::App& app) {
         auto* detect_cmd = app.add_subcommand("detect", "Run Algorithm 1 (background subtraction, (V-)RBNN, FIR or Kalman) over a dataset");
         detect_cmd->add_option("dir", dataset_dir, "Dataset directory (frames/*.pcd, background.pcd, ground_truth.json)")->required();
-        detect_cmd->add_option("--method", method_name, "rbnn | vrbnn | kalman")->check(CLI::IsMember({"rbnn", "vrbnn", "kalman"}));
+        detect_cmd->add_option("--method", method_name, "rbnn | vrbnn | kalman")
+            ->check(CLI::IsMember({"rbnn", "vrbnn", "kalman"}))
+            ->capture_default_str();
         detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
-        detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m");
-        detect_cmd->add_option("--lambda", detector.lambda, "V-RBNN lambda (Algorithm 1: 7)");
-        detect_cmd->add_option("--bias", detector.bias_m, "V-RBNN bias, m (Algorithm 1: 0.01)");
-        detect_cmd->add_option("--resolution", detector.background_resolution_m, "Background octree voxel, m");
-        detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)");
+        detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m")
+            ->check(CLI::PositiveNumber)
+            ->capture_default_str();
+        detect_cmd->add_option("--lambda", detector.lambda,
+                               "V-RBNN lambda (default: a radius of 1.2 of the dataset sensor's coarser beam pitch per "
+                               "metre, 180 for the paper's raster; Algorithm 1's own is 7)")
+            ->check(CLI::PositiveNumber);
+        detect_cmd->add_option("--bias", detector.bias_m, "V-RBNN bias, m (Algorithm 1: 0.01)")
+            ->check(CLI::NonNegativeNumber)
+            ->capture_default_str();
+        detect_cmd->add_option("--resolution", detector.background_resolution_m, "Background octree voxel, m")
+            ->check(CLI::PositiveNumber)
+            ->capture_default_str();
+        detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)")
+            ->check(CLI::NonNegativeNumber)
+            ->capture_default_str();
         detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)");
         return detect_cmd;
     }
@@ -40,7 +54,7 @@ struct DetectCommand {
         if (sequence.background.empty()) spdlog::warn("{}: no background.pcd: nothing is subtracted", dataset_dir);
         const auto detections = detect::detect_sequence(sequence, detector);
         nlohmann::json out = {{"method", method_name},
-                              {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda},
+                              {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda.value_or(detect::default_lambda(sequence.sensor))},
                                           {"bias_m", detector.bias_m}, {"resolution_m", detector.background_resolution_m},
                                           {"min_neighbours", detector.min_neighbours}, {"max_diagonal_m", detector.max_diagonal_m},
                                           {"max_speed_mps", detector.max_speed_mps}, {"min_box_m", detector.min_box_m}}},

@@ -9,9 +9,9 @@ rm -rf out/default
 ./build/apps/ladarsim render assets/scenarios/default.json --out out/default
 # Debian's own interpreter: its matplotlib is the one setup.sh installed.
 /usr/bin/python3 scripts/preview.py out/default
-# Algorithm 1 on the frames, scored against the ground truth. lambda = 180 (1.2 line pitches):
-# with Algorithm 1's lambda = 7 the V-RBNN radius (2 cm at 600 m) is below the beam spacing of
-# physically rendered frames (docs/detection.md).
-./build/apps/ladarsim detect out/default --method vrbnn --lambda 180
+# Algorithm 1 on the frames, scored against the ground truth. The default lambda comes from the
+# dataset's sensor (1.2 line pitches, 180 here): with Algorithm 1's lambda = 7 the V-RBNN radius
+# (2 cm at 600 m) is below the beam spacing of physically rendered frames (docs/detection.md).
+./build/apps/ladarsim detect out/default --method vrbnn
 ./build/apps/ladarsim eval out/default --detections out/default/detections-vrbnn.json \
   --json out/default/eval-vrbnn.json --plot out/default/eval-vrbnn.png

@@ -69,6 +69,12 @@ double vrbnn_radius_m(double lambda, const SensorGeometry& sensor, double range_
     return lambda / beams * std::tan(fov_rad) * range_m + bias_m;
 }
 
+double default_lambda(const SensorGeometry& sensor) {
+    const double pitch_deg = std::max(sensor.field_az_deg / sensor.beams_az, sensor.field_el_deg / sensor.beams_el);
+    const double slope = 1.2 * pitch_deg * std::numbers::pi / 180.0;
+    return slope / vrbnn_radius_m(1.0, sensor, 1.0, 0.0);
+}
+
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours) {
     if (points.empty()) return points;
     const auto cloud = to_pcl(points);

@@ -135,7 +135,7 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
     }
     d.radius_m = config_.method == Method::rbnn
                      ? config_.rbnn_radius_m
-                     : vrbnn_radius_m(config_.lambda, sensor_, cal_range, config_.bias_m);
+                     : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, cal_range, config_.bias_m);
 
     const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
     const double divergence_rad = sensor_.divergence_mrad * 1e-3;

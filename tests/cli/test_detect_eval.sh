@@ -5,7 +5,11 @@ source "$(dirname "$0")/harness.sh"
 good="$src/tests/cli/small.json"
 "$bin" render "$good" --out "$work/a" --quiet >/dev/null || fail "small scenario did not render"
 "$bin" render "$good" --out "$work/b" --seed 8 --quiet >/dev/null || fail "small scenario did not render with seed 8"
-"$bin" detect "$work/a" --lambda 180 >/dev/null 2>&1 || fail "detect failed"
+# Plain detect: its defaults come from the dataset's sensor, and find the drone.
+"$bin" detect "$work/a" >"$work/stdout" 2>&1 || fail "detect failed"
+grep -q "over 3 frames: [1-3] detected" "$work/stdout" || fail "plain detect found nothing: $(cat "$work/stdout")"
+"$bin" detect "$work/a" --radius -1 >/dev/null 2>&1
+[ $? -ne 0 ] || fail "detect accepted --radius -1"
 "$bin" eval "$work/a" --detections "$work/a/detections-vrbnn.json" >/dev/null 2>&1 || fail "eval of its own dataset failed"
 "$bin" eval "$work/b" --detections "$work/a/detections-vrbnn.json" >/dev/null 2>"$work/stderr"
 rc=$?

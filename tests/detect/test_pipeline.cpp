@@ -86,6 +86,16 @@ TEST_CASE("V-RBNN radius: FOV is the smaller field angle, so a spinning head's 3
     CHECK(vrbnn_radius_m(7.0, turned, 50.0, 0.01) == Approx(expected));
 }
 
+TEST_CASE("the default lambda grows the radius by 1.2 of the coarser beam pitch per metre", "[detect]") {
+    // The paper's raster: 1.2 x 0.025 deg = 0.524 mrad a metre, which is lambda = 180 (the value
+    // the detection tables use).
+    CHECK(default_lambda(kPaperSensor) == Approx(180.0).epsilon(1e-3));
+    CHECK(vrbnn_radius_m(default_lambda(kPaperSensor), kPaperSensor, 600.0, 0.0) == Approx(1.2 * 0.025 * M_PI / 180.0 * 600.0));
+    // The VLP-16's coarser pitch is its 2 deg between channels: 0.42 m at 10 m.
+    const SensorGeometry vlp16{1800, 16, 360.0, 32.0, 3.0};
+    CHECK(vrbnn_radius_m(default_lambda(vlp16), vlp16, 10.0, 0.0) == Approx(1.2 * 2.0 * M_PI / 180.0 * 10.0));
+}
+
 TEST_CASE("outlier removal keeps points with nMin neighbours; boxes over 1 m are occlusions", "[detect]") {
     // A row of 8 points 3.5 cm apart: with radius 0.06 m each has at most 2 neighbours.
     const Points row = drone_at({600.0f, 0.0f, 0.0f}, 8, 1);

@@ -25,6 +25,12 @@ std::vector<Cluster> rbnn(const Points& points, double radius_m);
 /// radius to its elevation field.
 double vrbnn_radius_m(double lambda, const SensorGeometry& sensor, double range_m, double bias_m);
 
+/// The lambda whose V-RBNN radius grows by 1.2 of the sensor's coarser beam pitch per metre of
+/// range: returns lie on beam axes, so a target's neighbouring returns are a pitch apart and a
+/// smaller radius fragments it (Algorithm 1's lambda = 7 gives 2 cm at 600 m against a 26 cm
+/// line pitch). 180 for the paper's raster, about 1,900 for the VLP-16.
+double default_lambda(const SensorGeometry& sensor);
+
 /// Keeps the points with at least `min_neighbours` other points within `radius_m` (PCL's
 /// RadiusOutlierRemoval; with Debian's PCL 1.13 the query point itself is not counted).
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours);

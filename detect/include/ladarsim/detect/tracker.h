@@ -22,7 +22,8 @@ std::string to_string(Method m);
 struct DetectorConfig {
     Method method = Method::vrbnn;
     double rbnn_radius_m = 0.2;      ///< RBNN's fixed radius
-    double lambda = 7.0;             ///< V-RBNN, Algorithm 1's defaults
+    /// V-RBNN; absent: default_lambda of the dataset's sensor (Algorithm 1's own is 7).
+    std::optional<double> lambda;
     double bias_m = 0.01;
     double background_resolution_m = 1.0;
     int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
