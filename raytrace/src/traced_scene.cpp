@@ -19,7 +19,8 @@ namespace {
 
 enum class GeometryKind { static_mesh, moving_instance, discs };
 
-// What a geometry id of the top scene stands for.
+// What a geometry id stands for: in the static scene a static mesh or the discs, in the top scene
+// a moving instance.
 struct TopGeometry {
     GeometryKind kind;
     Geometry geometry;
@@ -47,10 +48,16 @@ Matrix34 to_matrix(const float* column_major) {
 struct TracedScene::Impl {
     Eigen::Vector3d origin_world;
     Device device;
+    // The static meshes and the background discs, built and committed once; the top scene holds
+    // them as one instance with the identity transform, beside the moving instances, so that a new
+    // time window rebuilds only the few moving instances' top-level BVH.
+    EmbreeScene fixed;
+    std::vector<TopGeometry> fixed_geometries;  // by Embree geometry id in `fixed`
+    unsigned fixed_instance = RTC_INVALID_GEOMETRY_ID;  // its geometry id in the top scene
     EmbreeScene top;
     std::optional<VolumeBoundaries> volumes;  // fog and cloud, traced only by volumes_along
     std::vector<ModelBvh> models;
-    std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene
+    std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene (null entry: `fixed`)
     std::map<const scene::Model*, std::size_t> model_index;
     const scene::BackgroundMap* background = nullptr;
     // One per mesh object: its bounds, and for a moving object its transform at each motion step.
@@ -105,9 +112,11 @@ struct TracedScene::Impl {
         if (!device) throw std::runtime_error("Embree: could not create a device (unsupported CPU?)");
         rtcSetDeviceErrorFunction(device.get(), &Impl::on_error, this);
         top.reset(rtcNewScene(device.get()));
-        // Dynamic: Embree then keeps one BVH per geometry and rebuilds only the instances that
-        // move with each new time window, not the static terrain or the background map.
+        fixed.reset(rtcNewScene(device.get()));
+        // Dynamic: Embree then keeps one BVH per geometry (as the top scene held them before the
+        // static ones moved into a scene of their own; their hits are unchanged).
         rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneFlags(fixed.get(), RTC_SCENE_FLAG_DYNAMIC);
         volumes.emplace(device.get(), origin_world);
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
@@ -118,16 +127,28 @@ struct TracedScene::Impl {
         }
         if (scene.background && !scene.background->points_world.empty()) add_discs(*scene.background);
         volumes->commit();
+        if (!fixed_geometries.empty()) {
+            rtcCommitScene(fixed.get());
+            Geometry instance(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE));
+            rtcSetGeometryInstancedScene(instance.get(), fixed.get());
+            const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+            rtcSetGeometryTransform(instance.get(), 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+            fixed_instance = static_cast<unsigned>(geometries.size());
+            attach(TopGeometry{GeometryKind::static_mesh, std::move(instance), nullptr, nullptr});
+        }
         check("building the scene");
         set_time_window(0.0, 0.0, 2);
     }
 
-    void attach(TopGeometry entry) {
+    void attach(TopGeometry entry) { attach_to(top.get(), geometries, std::move(entry)); }
+    void attach_fixed(TopGeometry entry) { attach_to(fixed.get(), fixed_geometries, std::move(entry)); }
+
+    static void attach_to(RTCScene scene, std::vector<TopGeometry>& by_id, TopGeometry entry) {
         rtcCommitGeometry(entry.geometry.get());
         // Embree numbers the geometries of a fresh scene 0, 1, 2, ... in attachment order.
-        const unsigned id = rtcAttachGeometry(top.get(), entry.geometry.get());
-        if (id != geometries.size()) throw std::logic_error("Embree geometry ids are not sequential");
-        geometries.push_back(std::move(entry));
+        const unsigned id = rtcAttachGeometry(scene, entry.geometry.get());
+        if (id != by_id.size()) throw std::logic_error("Embree geometry ids are not sequential");
+        by_id.push_back(std::move(entry));
     }
 
     // Fills an Embree triangle geometry from a mesh, vertices mapped by `transform`.
@@ -179,7 +200,7 @@ struct TracedScene::Impl {
         float* vertices = nullptr;
         entry.geometry = triangle_geometry(object.model->mesh, relative_from_model(object, 0.0), &vertices);
         entry.vertices = vertices;
-        attach(std::move(entry));
+        attach_fixed(std::move(entry));
     }
 
     void add_volume(const scene::SceneObject& object) {
@@ -222,7 +243,7 @@ struct TracedScene::Impl {
             }
             v[4 * i + 3] = map.radii_m[i];
         }
-        attach(TopGeometry{GeometryKind::discs, std::move(g), nullptr, nullptr});
+        attach_fixed(TopGeometry{GeometryKind::discs, std::move(g), nullptr, nullptr});
     }
 
     void set_time_window(double begin_s, double end_s, int motion_steps) {
@@ -266,8 +287,9 @@ struct TracedScene::Impl {
 
     std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-        const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
-        const TopGeometry& entry = geometries[instanced ? rh.hit.instID[0] : rh.hit.geomID];
+        // Every hit is inside an instance: the static scene's, or a moving object's.
+        const unsigned instance = rh.hit.instID[0];
+        const TopGeometry& entry = instance == fixed_instance ? fixed_geometries[rh.hit.geomID] : geometries[instance];
         // The ray's origin in the relative frame, exactly (the float copy given to Embree is not).
         const Eigen::Vector3d o = ray.origin_world - origin_world;
         const Eigen::Vector3d& d = ray.direction;
