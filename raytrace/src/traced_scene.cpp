@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -65,6 +66,11 @@ struct TracedScene::Impl {
         const scene::SceneObject* object;
         ObjectBounds bounds;
         std::vector<Matrix34> step_world_from_model;
+        // Its sphere over the whole time window, as seen from origin_world: the direction to its
+        // centre, its angular radius, and whether it holds origin_world.
+        Eigen::Vector3d window_direction = Eigen::Vector3d::UnitX();
+        double window_angular_radius_rad = 0.0;
+        bool window_holds_origin = false;
     };
     std::vector<BoundsTrack> bounds;
     double window_begin_s = 0.0;
@@ -254,11 +260,13 @@ struct TracedScene::Impl {
         window_length_s = end_s - begin_s;
         window_id = ++windows_set;
         for (BoundsTrack& track : bounds) {
-            if (!track.bounds.moving) continue;
-            track.step_world_from_model.resize(static_cast<std::size_t>(motion_steps));
-            for (int step = 0; step < motion_steps; ++step)
-                track.step_world_from_model[static_cast<std::size_t>(step)] =
-                    world_from_model(*track.object, begin_s + window_length_s * step / (motion_steps - 1));
+            if (track.bounds.moving) {
+                track.step_world_from_model.resize(static_cast<std::size_t>(motion_steps));
+                for (int step = 0; step < motion_steps; ++step)
+                    track.step_world_from_model[static_cast<std::size_t>(step)] =
+                        world_from_model(*track.object, begin_s + window_length_s * step / (motion_steps - 1));
+            }
+            set_window_sphere(track);
         }
         for (auto& entry : geometries) {
             if (entry.kind != GeometryKind::moving_instance) continue;
@@ -276,6 +284,40 @@ struct TracedScene::Impl {
         }
         rtcCommitScene(top.get());
         check("committing the scene");
+    }
+
+    // A moving object's centre at any time of the window is a linear interpolation between two
+    // motion steps' centres (its radius unchanged): a sphere around the steps' centres, grown by
+    // the object's radius, holds it throughout.
+    void set_window_sphere(BoundsTrack& track) const {
+        const Eigen::Vector3d centre_model = track.bounds.box_model.center();
+        Eigen::AlignedBox3d centres;
+        if (track.bounds.moving) {
+            for (const Matrix34& m : track.step_world_from_model) centres.extend(m * centre_model.homogeneous());
+        } else {
+            centres.extend(track.bounds.centre_world);
+        }
+        const Eigen::Vector3d centre = centres.center();
+        // Padded by a millionth for the rounding of the per-ray placement it must hold.
+        const double radius = (0.5 * centres.sizes().norm() + track.bounds.radius_m) * (1.0 + 1e-6) + 1e-9;
+        const Eigen::Vector3d to_centre = centre - origin_world;
+        const double distance = to_centre.norm();
+        track.window_holds_origin = distance <= radius;
+        track.window_direction = track.window_holds_origin ? Eigen::Vector3d::UnitX() : Eigen::Vector3d(to_centre / distance);
+        track.window_angular_radius_rad = track.window_holds_origin ? std::numbers::pi : std::asin(radius / distance);
+    }
+
+    // A track's bounds at Embree's time `u` (0 to 1 over the window), appended to `out`.
+    void push_bounds(std::size_t track_index, double u, std::vector<ObjectBounds>& out) const {
+        const BoundsTrack& track = bounds[track_index];
+        out.push_back(track.bounds);
+        if (!track.bounds.moving) return;
+        const auto& m = track.step_world_from_model;
+        const double f = u * static_cast<double>(m.size() - 1);
+        const std::size_t i = std::min(static_cast<std::size_t>(f), m.size() - 2);
+        ObjectBounds& b = out.back();
+        b.world_from_model = m[i] + (f - static_cast<double>(i)) * (m[i + 1] - m[i]);
+        b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
     }
 
     float embree_time(double time_s) const {
@@ -357,17 +399,38 @@ bool TracedScene::has_volumes() const { return !impl_->volumes->empty(); }
 void TracedScene::object_bounds(double time_s, std::vector<ObjectBounds>& out) const {
     out.clear();
     const double u = impl_->embree_time(time_s);
-    for (const Impl::BoundsTrack& track : impl_->bounds) {
-        out.push_back(track.bounds);
-        if (!track.bounds.moving) continue;
-        const auto& m = track.step_world_from_model;
-        const double f = u * static_cast<double>(m.size() - 1);
-        const std::size_t i = std::min(static_cast<std::size_t>(f), m.size() - 2);
-        ObjectBounds& b = out.back();
-        b.world_from_model = m[i] + (f - static_cast<double>(i)) * (m[i + 1] - m[i]);
-        b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
+    for (std::size_t k = 0; k < impl_->bounds.size(); ++k) impl_->push_bounds(k, u, out);
+}
+
+void TracedScene::object_bounds_near(const Eigen::Vector3d& axis_world, double half_angle_rad, double radius_factor,
+                                     double time_s, std::vector<ObjectBounds>& out) const {
+    out.clear();
+    // cos(half angle + factor x angular radius) of each object, per thread, for this window and cone.
+    thread_local struct {
+        std::uint64_t window = 0;
+        double half_angle = -1.0, factor = -1.0;
+        std::vector<double> cos_limit;
+    } limits;
+    if (limits.window != impl_->window_id || limits.half_angle != half_angle_rad || limits.factor != radius_factor) {
+        limits.window = impl_->window_id;
+        limits.half_angle = half_angle_rad;
+        limits.factor = radius_factor;
+        limits.cos_limit.clear();
+        for (const Impl::BoundsTrack& track : impl_->bounds) {
+            const double reach = half_angle_rad + radius_factor * track.window_angular_radius_rad;
+            // -2: every direction (the sphere holds the sensor, or the cone reaches all round).
+            limits.cos_limit.push_back(track.window_holds_origin || reach >= std::numbers::pi ? -2.0 : std::cos(reach));
+        }
+    }
+    const double u = impl_->embree_time(time_s);
+    for (std::size_t k = 0; k < impl_->bounds.size(); ++k) {
+        // Less a hair for the rounding of the dot product near the limit.
+        if (axis_world.dot(impl_->bounds[k].window_direction) < limits.cos_limit[k] - 1e-12) continue;
+        impl_->push_bounds(k, u, out);
     }
 }
+
+
 
 TracedScene::TracedScene(const scene::Scene& scene, const Eigen::Vector3d& origin_world)
     : impl_(std::make_unique<Impl>(scene, origin_world)) {}
