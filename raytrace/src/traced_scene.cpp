@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,7 +20,8 @@ namespace {
 
 enum class GeometryKind { static_mesh, moving_instance, discs };
 
-// What a geometry id of the top scene stands for.
+// What a geometry id stands for: in the static scene a static mesh or the discs, in the top scene
+// a moving instance.
 struct TopGeometry {
     GeometryKind kind;
     Geometry geometry;
@@ -47,10 +49,16 @@ Matrix34 to_matrix(const float* column_major) {
 struct TracedScene::Impl {
     Eigen::Vector3d origin_world;
     Device device;
+    // The static meshes and the background discs, built and committed once; the top scene holds
+    // them as one instance with the identity transform, beside the moving instances, so that a new
+    // time window rebuilds only the few moving instances' top-level BVH.
+    EmbreeScene fixed;
+    std::vector<TopGeometry> fixed_geometries;  // by Embree geometry id in `fixed`
+    unsigned fixed_instance = RTC_INVALID_GEOMETRY_ID;  // its geometry id in the top scene
     EmbreeScene top;
     std::optional<VolumeBoundaries> volumes;  // fog and cloud, traced only by volumes_along
     std::vector<ModelBvh> models;
-    std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene
+    std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene (null entry: `fixed`)
     std::map<const scene::Model*, std::size_t> model_index;
     const scene::BackgroundMap* background = nullptr;
     // One per mesh object: its bounds, and for a moving object its transform at each motion step.
@@ -58,6 +66,11 @@ struct TracedScene::Impl {
         const scene::SceneObject* object;
         ObjectBounds bounds;
         std::vector<Matrix34> step_world_from_model;
+        // Its sphere over the whole time window, as seen from origin_world: the direction to its
+        // centre, its angular radius, and whether it holds origin_world.
+        Eigen::Vector3d window_direction = Eigen::Vector3d::UnitX();
+        double window_angular_radius_rad = 0.0;
+        bool window_holds_origin = false;
     };
     std::vector<BoundsTrack> bounds;
     double window_begin_s = 0.0;
@@ -105,9 +118,11 @@ struct TracedScene::Impl {
         if (!device) throw std::runtime_error("Embree: could not create a device (unsupported CPU?)");
         rtcSetDeviceErrorFunction(device.get(), &Impl::on_error, this);
         top.reset(rtcNewScene(device.get()));
-        // Dynamic: Embree then keeps one BVH per geometry and rebuilds only the instances that
-        // move with each new time window, not the static terrain or the background map.
+        fixed.reset(rtcNewScene(device.get()));
+        // Dynamic: Embree then keeps one BVH per geometry (as the top scene held them before the
+        // static ones moved into a scene of their own; their hits are unchanged).
         rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneFlags(fixed.get(), RTC_SCENE_FLAG_DYNAMIC);
         volumes.emplace(device.get(), origin_world);
         for (const scene::SceneObject& object : scene.objects) {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
@@ -118,16 +133,28 @@ struct TracedScene::Impl {
         }
         if (scene.background && !scene.background->points_world.empty()) add_discs(*scene.background);
         volumes->commit();
+        if (!fixed_geometries.empty()) {
+            rtcCommitScene(fixed.get());
+            Geometry instance(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE));
+            rtcSetGeometryInstancedScene(instance.get(), fixed.get());
+            const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+            rtcSetGeometryTransform(instance.get(), 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+            fixed_instance = static_cast<unsigned>(geometries.size());
+            attach(TopGeometry{GeometryKind::static_mesh, std::move(instance), nullptr, nullptr});
+        }
         check("building the scene");
         set_time_window(0.0, 0.0, 2);
     }
 
-    void attach(TopGeometry entry) {
+    void attach(TopGeometry entry) { attach_to(top.get(), geometries, std::move(entry)); }
+    void attach_fixed(TopGeometry entry) { attach_to(fixed.get(), fixed_geometries, std::move(entry)); }
+
+    static void attach_to(RTCScene scene, std::vector<TopGeometry>& by_id, TopGeometry entry) {
         rtcCommitGeometry(entry.geometry.get());
         // Embree numbers the geometries of a fresh scene 0, 1, 2, ... in attachment order.
-        const unsigned id = rtcAttachGeometry(top.get(), entry.geometry.get());
-        if (id != geometries.size()) throw std::logic_error("Embree geometry ids are not sequential");
-        geometries.push_back(std::move(entry));
+        const unsigned id = rtcAttachGeometry(scene, entry.geometry.get());
+        if (id != by_id.size()) throw std::logic_error("Embree geometry ids are not sequential");
+        by_id.push_back(std::move(entry));
     }
 
     // Fills an Embree triangle geometry from a mesh, vertices mapped by `transform`.
@@ -179,7 +206,7 @@ struct TracedScene::Impl {
         float* vertices = nullptr;
         entry.geometry = triangle_geometry(object.model->mesh, relative_from_model(object, 0.0), &vertices);
         entry.vertices = vertices;
-        attach(std::move(entry));
+        attach_fixed(std::move(entry));
     }
 
     void add_volume(const scene::SceneObject& object) {
@@ -222,7 +249,7 @@ struct TracedScene::Impl {
             }
             v[4 * i + 3] = map.radii_m[i];
         }
-        attach(TopGeometry{GeometryKind::discs, std::move(g), nullptr, nullptr});
+        attach_fixed(TopGeometry{GeometryKind::discs, std::move(g), nullptr, nullptr});
     }
 
     void set_time_window(double begin_s, double end_s, int motion_steps) {
@@ -233,11 +260,13 @@ struct TracedScene::Impl {
         window_length_s = end_s - begin_s;
         window_id = ++windows_set;
         for (BoundsTrack& track : bounds) {
-            if (!track.bounds.moving) continue;
-            track.step_world_from_model.resize(static_cast<std::size_t>(motion_steps));
-            for (int step = 0; step < motion_steps; ++step)
-                track.step_world_from_model[static_cast<std::size_t>(step)] =
-                    world_from_model(*track.object, begin_s + window_length_s * step / (motion_steps - 1));
+            if (track.bounds.moving) {
+                track.step_world_from_model.resize(static_cast<std::size_t>(motion_steps));
+                for (int step = 0; step < motion_steps; ++step)
+                    track.step_world_from_model[static_cast<std::size_t>(step)] =
+                        world_from_model(*track.object, begin_s + window_length_s * step / (motion_steps - 1));
+            }
+            set_window_sphere(track);
         }
         for (auto& entry : geometries) {
             if (entry.kind != GeometryKind::moving_instance) continue;
@@ -257,6 +286,40 @@ struct TracedScene::Impl {
         check("committing the scene");
     }
 
+    // A moving object's centre at any time of the window is a linear interpolation between two
+    // motion steps' centres (its radius unchanged): a sphere around the steps' centres, grown by
+    // the object's radius, holds it throughout.
+    void set_window_sphere(BoundsTrack& track) const {
+        const Eigen::Vector3d centre_model = track.bounds.box_model.center();
+        Eigen::AlignedBox3d centres;
+        if (track.bounds.moving) {
+            for (const Matrix34& m : track.step_world_from_model) centres.extend(m * centre_model.homogeneous());
+        } else {
+            centres.extend(track.bounds.centre_world);
+        }
+        const Eigen::Vector3d centre = centres.center();
+        // Padded by a millionth for the rounding of the per-ray placement it must hold.
+        const double radius = (0.5 * centres.sizes().norm() + track.bounds.radius_m) * (1.0 + 1e-6) + 1e-9;
+        const Eigen::Vector3d to_centre = centre - origin_world;
+        const double distance = to_centre.norm();
+        track.window_holds_origin = distance <= radius;
+        track.window_direction = track.window_holds_origin ? Eigen::Vector3d::UnitX() : Eigen::Vector3d(to_centre / distance);
+        track.window_angular_radius_rad = track.window_holds_origin ? std::numbers::pi : std::asin(radius / distance);
+    }
+
+    // A track's bounds at Embree's time `u` (0 to 1 over the window), appended to `out`.
+    void push_bounds(std::size_t track_index, double u, std::vector<ObjectBounds>& out) const {
+        const BoundsTrack& track = bounds[track_index];
+        out.push_back(track.bounds);
+        if (!track.bounds.moving) return;
+        const auto& m = track.step_world_from_model;
+        const double f = u * static_cast<double>(m.size() - 1);
+        const std::size_t i = std::min(static_cast<std::size_t>(f), m.size() - 2);
+        ObjectBounds& b = out.back();
+        b.world_from_model = m[i] + (f - static_cast<double>(i)) * (m[i + 1] - m[i]);
+        b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
+    }
+
     float embree_time(double time_s) const {
         if (window_length_s <= 0.0) return 0.0f;
         return static_cast<float>(std::clamp((time_s - window_begin_s) / window_length_s, 0.0, 1.0));
@@ -266,8 +329,9 @@ struct TracedScene::Impl {
 
     std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-        const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
-        const TopGeometry& entry = geometries[instanced ? rh.hit.instID[0] : rh.hit.geomID];
+        // Every hit is inside an instance: the static scene's, or a moving object's.
+        const unsigned instance = rh.hit.instID[0];
+        const TopGeometry& entry = instance == fixed_instance ? fixed_geometries[rh.hit.geomID] : geometries[instance];
         // The ray's origin in the relative frame, exactly (the float copy given to Embree is not).
         const Eigen::Vector3d o = ray.origin_world - origin_world;
         const Eigen::Vector3d& d = ray.direction;
@@ -335,17 +399,38 @@ bool TracedScene::has_volumes() const { return !impl_->volumes->empty(); }
 void TracedScene::object_bounds(double time_s, std::vector<ObjectBounds>& out) const {
     out.clear();
     const double u = impl_->embree_time(time_s);
-    for (const Impl::BoundsTrack& track : impl_->bounds) {
-        out.push_back(track.bounds);
-        if (!track.bounds.moving) continue;
-        const auto& m = track.step_world_from_model;
-        const double f = u * static_cast<double>(m.size() - 1);
-        const std::size_t i = std::min(static_cast<std::size_t>(f), m.size() - 2);
-        ObjectBounds& b = out.back();
-        b.world_from_model = m[i] + (f - static_cast<double>(i)) * (m[i + 1] - m[i]);
-        b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
+    for (std::size_t k = 0; k < impl_->bounds.size(); ++k) impl_->push_bounds(k, u, out);
+}
+
+void TracedScene::object_bounds_near(const Eigen::Vector3d& axis_world, double half_angle_rad, double radius_factor,
+                                     double time_s, std::vector<ObjectBounds>& out) const {
+    out.clear();
+    // cos(half angle + factor x angular radius) of each object, per thread, for this window and cone.
+    thread_local struct {
+        std::uint64_t window = 0;
+        double half_angle = -1.0, factor = -1.0;
+        std::vector<double> cos_limit;
+    } limits;
+    if (limits.window != impl_->window_id || limits.half_angle != half_angle_rad || limits.factor != radius_factor) {
+        limits.window = impl_->window_id;
+        limits.half_angle = half_angle_rad;
+        limits.factor = radius_factor;
+        limits.cos_limit.clear();
+        for (const Impl::BoundsTrack& track : impl_->bounds) {
+            const double reach = half_angle_rad + radius_factor * track.window_angular_radius_rad;
+            // -2: every direction (the sphere holds the sensor, or the cone reaches all round).
+            limits.cos_limit.push_back(track.window_holds_origin || reach >= std::numbers::pi ? -2.0 : std::cos(reach));
+        }
+    }
+    const double u = impl_->embree_time(time_s);
+    for (std::size_t k = 0; k < impl_->bounds.size(); ++k) {
+        // Less a hair for the rounding of the dot product near the limit.
+        if (axis_world.dot(impl_->bounds[k].window_direction) < limits.cos_limit[k] - 1e-12) continue;
+        impl_->push_bounds(k, u, out);
     }
 }
+
+
 
 TracedScene::TracedScene(const scene::Scene& scene, const Eigen::Vector3d& origin_world)
     : impl_(std::make_unique<Impl>(scene, origin_world)) {}

@@ -90,6 +90,13 @@ void BeamReceiver::add_false_alarms(std::vector<DetectedReturn>& returns, const 
 }
 
 std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfaces, const BeamKey& key) const {
+    std::vector<DetectedReturn> returns;
+    receive(surfaces, key, returns);
+    return returns;
+}
+
+void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns) const {
+    returns.clear();
     // Speckle: each surface's energy fluctuates as Gamma(M), M the speckle cells the aperture
     // averages for the illuminated spot (the part of the footprint on that surface).
     RandomSequence speckle(key.seed, RandomStream::speckle, key.frame, key.beam);
@@ -115,20 +122,23 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
         s.echoes = {Echo{range, total_energy(s.echoes), s.echoes.front().surface, spread}};
     }
 
-    std::vector<DetectedReturn> returns;
     RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);
     if (surfaces.size() == 1) {
         const DetectedReturn r = closed_form(surfaces.front(), noise);
         if (r.energy_j >= 0.0) returns.push_back(r);
     } else if (surfaces.size() > 1) {
-        std::vector<Echo> echoes;
+        thread_local std::vector<Echo> echoes;
+        thread_local std::vector<DetectedPulse> pulses;
+        echoes.clear();
+        pulses.clear();
         for (const BeamSurface& s : surfaces)
             for (Echo e : s.echoes) {
                 if (sensor_.receiver.range_folding) e.range_m = std::fmod(e.range_m, unambiguous_range_m_);
                 echoes.push_back(e);
             }
         RandomSequence waveform_noise(key.seed, RandomStream::waveform_noise, key.frame, key.beam);
-        for (const DetectedPulse& p : waveform_.detect(echoes, noise_ ? &waveform_noise : nullptr)) {
+        waveform_.detect(echoes, noise_ ? &waveform_noise : nullptr, pulses);
+        for (const DetectedPulse& p : pulses) {
             DetectedReturn r{};
             r.range_m = p.range_m;
             r.energy_j = p.peak_a / (apd_.amps_per_watt() * waveform_.pulse().peak_per_joule());
@@ -160,13 +170,17 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
             case ReportedReturns::strongest: {
                 const auto strongest = std::max_element(returns.begin(), returns.end(),
                     [](const DetectedReturn& a, const DetectedReturn& b) { return a.energy_j < b.energy_j; });
-                returns = {*strongest};
+                const DetectedReturn kept = *strongest;
+                returns.assign(1, kept);
                 break;
             }
-            case ReportedReturns::first_and_last: returns = {returns.front(), returns.back()}; break;
+            case ReportedReturns::first_and_last: {
+                const DetectedReturn first = returns.front(), last = returns.back();
+                returns.assign({first, last});
+                break;
+            }
         }
     }
-    return returns;
 }
 
 }  // namespace ladarsim::sensor_model

@@ -52,12 +52,22 @@ double tallied(const std::vector<FootprintIntegrator::Tally>& tally, std::uint32
 }  // namespace
 
 std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m) {
-    std::sort(echoes.begin(), echoes.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
     std::vector<BeamSurface> surfaces;
+    gather_surfaces(echoes, gap_m, surfaces);
+    return surfaces;
+}
+
+void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces) {
+    std::sort(echoes.begin(), echoes.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
+    std::size_t count = 0;
     for (std::size_t first = 0; first < echoes.size();) {
         std::size_t last = first + 1;
         while (last < echoes.size() && same_surface(echoes[last - 1], echoes[last], gap_m)) ++last;
-        BeamSurface surface;
+        if (count == surfaces.size()) surfaces.emplace_back();
+        BeamSurface& surface = surfaces[count++];
+        surface.echoes.clear();
+        surface.weight = 0.0;
+        surface.source = ReturnSource::surface;
         bool one_object = true;
         for (std::size_t k = first; k < last; ++k) {
             surface.weight += echoes[k].weight;
@@ -78,10 +88,9 @@ std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, doubl
                                                   [](const auto& a, const auto& b) { return a.second < b.second; })
                                     ->first;
         }
-        surfaces.push_back(std::move(surface));
         first = last;
     }
-    return surfaces;
+    surfaces.resize(count);
 }
 
 FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced,
@@ -149,12 +158,16 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         return;
     }
 
-    // Which objects can this beam's cone touch, at its time?
+    // Which objects can this beam's cone touch, at its time? Only those near its cone are placed
+    // and tested below: a cone within r_max of the axis in footprint coordinates stays within
+    // max(1, e) r_max of it in angle, and a sphere that passes the test below lies within
+    // 1 + 1.01 max(e, 1/e) of its angular radius beyond that (e the ellipticity).
     thread_local std::vector<raytrace::ObjectBounds> objects;
-    traced_.object_bounds(aim.time_s, objects);
+    const double r_max = footprint_.max_offset_rad();
+    traced_.object_bounds_near(aim.world_from_beam.col(0), std::max(1.0, ellipticity_) * r_max,
+                               1.0 + 1.01 * std::max(ellipticity_, 1.0 / ellipticity_), aim.time_s, objects);
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
-    const double r_max = footprint_.max_offset_rad();
     bool media = false;
     std::optional<FootprintRect> targets;  ///< the outline of every small or moving object met
     for (const raytrace::ObjectBounds& b : objects) {

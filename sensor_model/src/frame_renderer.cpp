@@ -168,6 +168,8 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
     const double photoelectrons_per_joule = sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
     thread_local std::vector<Probe> probes;
     thread_local BeamEchoes echoes;
+    thread_local std::vector<BeamSurface> surfaces;
+    thread_local std::vector<DetectedReturn> detected;
     std::vector<Return> returns;
 
     for (int step = 0; step < raster_.columns(); ++step) {
@@ -191,14 +193,15 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
         }
         integrator_.integrate(a, probes, frame, echoes);
         rays += static_cast<std::uint64_t>(echoes.rays);
-        std::vector<BeamSurface> surfaces = gather_surfaces(echoes.surface, sensor.receiver.return_gap_m);
+        gather_surfaces(echoes.surface, sensor.receiver.return_gap_m, surfaces);
         for (BeamSurface& v : echoes.volume) surfaces.push_back(std::move(v));
 
         const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);
         const BeamKey key{scenario_.render.seed, frame, a.cell};
         std::uint8_t return_index = 0;
-        for (const DetectedReturn& d : receiver_.receive(std::move(surfaces), key)) {
+        receiver_.receive(surfaces, key, detected);
+        for (const DetectedReturn& d : detected) {
             Return r;
             r.range_m = d.range_m;
             r.position_sensor = (axis_sensor * r.range_m).cast<float>();

@@ -52,9 +52,15 @@ std::vector<double> WaveformReceiver::band_limited_noise(std::size_t n, RandomSe
 }
 
 std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise) const {
-    std::vector<Echo> sorted(echoes.begin(), echoes.end());
-    std::sort(sorted.begin(), sorted.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
     std::vector<DetectedPulse> pulses;
+    detect(echoes, noise, pulses);
+    return pulses;
+}
+
+void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& pulses) const {
+    thread_local std::vector<Echo> sorted;
+    sorted.assign(echoes.begin(), echoes.end());
+    std::sort(sorted.begin(), sorted.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
     const double to_time = 2.0 / kSpeedOfLight_mps;
     double widest = pulse_.sigma_s;
     for (const Echo& e : sorted) widest = std::max(widest, shape_of(e).sigma_s);
@@ -68,14 +74,15 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
         detect_window(std::span(sorted).subspan(first, last - first), t0, bins, noise, pulses);
         first = last;
     }
-    return pulses;
 }
 
 void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
                                      std::vector<DetectedPulse>& out) const {
     const double to_time = 2.0 / kSpeedOfLight_mps;
     const double amps_per_watt = apd_.amps_per_watt();
-    std::vector<double> power(bins, 0.0);
+    // Per-thread scratch: a beam's windows are a few hundred bins.
+    thread_local std::vector<double> power, n, y, contribution;
+    power.assign(bins, 0.0);
     for (const Echo& e : echoes) {
         const double te = e.range_m * to_time;
         const PulseShape shape = shape_of(e);
@@ -98,14 +105,14 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
             r *= q;
         }
     }
-    std::vector<double> n(bins, 0.0);
+    n.assign(bins, 0.0);
     if (noise && bins <= kNoiseBank / 8) {
         const auto start = static_cast<std::size_t>(noise->uniform() * static_cast<double>(kNoiseBank - bins));
         std::copy_n(noise_bank_.begin() + static_cast<std::ptrdiff_t>(start), bins, n.begin());
     } else if (noise) {
         n = band_limited_noise(bins, *noise);  // a window longer than the bank can spare
     }
-    std::vector<double> y(bins);
+    y.resize(bins);
     const double saturation = apd_.saturation_a();
     for (std::size_t k = 0; k < bins; ++k)
         y[k] = std::min(amps_per_watt * power[k] + apd_.noise_a(power[k]) * n[k], saturation);
@@ -114,7 +121,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     const double floor_noise = apd_.noise_floor_a();
     std::uint32_t surfaces = 0;
     for (const Echo& e : echoes) surfaces = std::max(surfaces, e.surface + 1);
-    std::vector<double> contribution(surfaces);
+    contribution.assign(surfaces, 0.0);
     // The 50 % crossing of a pulse is searched back no further than where the previous one ended.
     std::size_t searched_to = 0;
     auto finish = [&](std::size_t peak) {

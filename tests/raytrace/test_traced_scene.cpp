@@ -1,7 +1,9 @@
 // TracedScene against closed-form ray/plane, ray/sphere and ray/disc distances.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "ladarsim/raytrace/traced_scene.h"
@@ -313,4 +315,52 @@ TEST_CASE("volumes: rays grazing a cloud's outline never start inside it; a sens
         CHECK(segments[0].exit_m > 7.0);
         CHECK(segments[0].exit_m < 12.5);
     }
+}
+
+TEST_CASE("object_bounds_near: every object a cone can meet, against testing each object", "[traced_scene]") {
+    // Plates and spheres, small and large, fixed and moving fast, scattered around the sensor.
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    scene::Scene scene;
+    for (std::uint32_t id = 1; id <= 40; ++id) {
+        const Eigen::Vector3d at(300.0 * u(rng), 300.0 * u(rng), 50.0 * u(rng));
+        const auto model = id % 2 ? plate(0.2 + 5.0 * (u(rng) + 1.0), 0.3) : icosphere(0.1 + 2.0 * (u(rng) + 1.0), 1, 0.3);
+        scene.objects.push_back(object_at(id, model, id % 3 ? sliding(at, 40.0 * Eigen::Vector3d(u(rng), u(rng), u(rng)))
+                                                            : fixed_at(at.x(), at.y(), at.z())));
+    }
+    const Eigen::Vector3d sensor(3.0, -2.0, 1.0);
+    TracedScene traced(scene, sensor);
+    traced.set_time_window(2.0, 2.5, 3);
+    std::vector<raytrace::ObjectBounds> all, near;
+    int met = 0, culled = 0;
+    for (int beam = 0; beam < 4000; ++beam) {
+        const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+        const double half_angle = beam % 2 ? 1e-3 : 0.05, factor = 2.01;
+        const double time = 2.0 + 0.5 * (u(rng) + 1.0) / 2.0;
+        traced.object_bounds(time, all);
+        traced.object_bounds_near(axis, half_angle, factor, time, near);
+        // What near returns are exactly object_bounds' entries, in order.
+        std::size_t j = 0;
+        for (const raytrace::ObjectBounds& b : all) {
+            const Eigen::Vector3d to = b.centre_world - sensor;
+            const bool meets = to.norm() <= b.radius_m ||
+                               std::acos(std::clamp(axis.dot(to.normalized()), -1.0, 1.0)) <=
+                                   half_angle + factor * std::asin(b.radius_m / to.norm());
+            const bool listed = j < near.size() && near[j].object_id == b.object_id;
+            if (meets) {
+                ++met;
+                REQUIRE(listed);
+            }
+            if (!listed) {
+                ++culled;
+                continue;
+            }
+            CHECK(near[j].centre_world == b.centre_world);
+            CHECK(near[j].world_from_model == b.world_from_model);
+            ++j;
+        }
+        CHECK(j == near.size());
+    }
+    CHECK(met > 100);          // the cones met objects often enough to test something
+    CHECK(culled > 4000 * 30);  // and most objects, most of the time, were never placed
 }

@@ -60,6 +60,15 @@ public:
     /// `out` in the scene's object order.
     void object_bounds(double time_s, std::vector<ObjectBounds>& out) const;
 
+    /// object_bounds() of only those objects that a cone from origin_world() can meet: the ones
+    /// whose sphere over the whole time window (holding the object at every time in it), its
+    /// angular radius beta scaled by `radius_factor`, comes within `half_angle_rad` of `axis_world`
+    /// (a unit vector): angle(axis, centre) <= half_angle_rad + radius_factor * beta. Each object's
+    /// window sphere is found once per time window, so that a beam tests one dot product per
+    /// object instead of placing and testing every object. Fills `out` in the scene's object order.
+    void object_bounds_near(const Eigen::Vector3d& axis_world, double half_angle_rad, double radius_factor, double time_s,
+                            std::vector<ObjectBounds>& out) const;
+
     const Eigen::Vector3d& origin_world() const;
 
     /// For benchmarks: from now on every traced batch of rays is appended to `log` (null: stop).

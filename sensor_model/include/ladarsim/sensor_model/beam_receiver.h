@@ -47,6 +47,9 @@ public:
 
     /// Detected returns of one beam, sorted by reported range, filtered by `reported_returns`.
     std::vector<DetectedReturn> receive(std::vector<BeamSurface> surfaces, const BeamKey& key) const;
+    /// The same into `returns` (cleared first), working on `surfaces` in place: a renderer reuses
+    /// both from beam to beam and allocates nothing once they are warm.
+    void receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns) const;
 
     const ApdReceiver& apd() const { return apd_; }
     const WaveformReceiver& waveform() const { return waveform_; }

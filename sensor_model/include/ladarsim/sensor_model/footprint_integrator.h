@@ -34,6 +34,8 @@ struct SurfaceEcho {
 /// range, so that the result does not depend on how densely the surface was sampled. A surface is
 /// named after the object carrying most of its energy.
 std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m);
+/// The same into `surfaces`, whose elements (and their echo lists) are reused.
+void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces);
 
 /// Where one beam points and when it fires.
 struct BeamAim {

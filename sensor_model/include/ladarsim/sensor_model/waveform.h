@@ -44,6 +44,8 @@ public:
     /// everything else a beam does; two windows of a few hundred samples overlap with probability
     /// below 1 %).
     std::vector<DetectedPulse> detect(std::span<const Echo> echoes, RandomSequence* noise) const;
+    /// The same, appending to `out` (per-thread scratch buffers: no allocation once warm).
+    void detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& out) const;
 
     /// `n` samples of zero-mean, unit-variance Gaussian noise whose spectrum is flat up to the
     /// receiver's bandwidth and zero above (spectral synthesis with one inverse FFT).
