@@ -27,8 +27,8 @@ struct ImportOusterCommand {
     int run() {
         const OusterCalibration calibration = read_ouster_metadata(metadata_file);
         const auto frames = read_ouster_pcap(pcap_file, calibration);
-        write_recorded_dataset(frames, sensor_model::ouster_sensor_json(calibration), out_dir, pcap_file);
-        print_import_summary(frames, pcap_file, out_dir);
+        const auto kept = write_recorded_dataset(frames, sensor_model::ouster_sensor_json(calibration), out_dir, pcap_file);
+        print_import_summary(frames, pcap_file, out_dir, kept);
         return 0;
     }
 };

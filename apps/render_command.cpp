@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame.h"
 #include "stop_signal.h"
 #include "ladarsim/sensor_model/render_dataset.h"
@@ -40,6 +41,7 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                 s.out_dir.string().c_str(),
                 s.background_points ? (" and background.pcd (" + std::to_string(s.background_points) +
                                        " points of the static scene)").c_str() : "");
+    if (!s.kept.empty()) std::printf("%s\n", kept_files_note(s.kept, s.out_dir).c_str());
 }
 
 struct RenderCommand {
@@ -60,7 +62,7 @@ struct RenderCommand {
                       "(mpirun -n N ladarsim render ...), with output identical to one process");
         render->add_option("scenario", scenario_files, "Scenario file(s) (JSON, see docs/scenario.md)")->required();
         render->add_option("--out", out_dir,
-                           "Output directory (created; an earlier dataset there is replaced); with several scenarios, "
+                           "Output directory (created; an earlier dataset's files there are replaced, yours beside them kept); with several scenarios, "
                            "one directory per scenario inside it, named after the file")
             ->required();
         render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")->check(CLI::PositiveNumber);

@@ -229,7 +229,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         std::filesystem::remove(truth_of(k));
     }
     std::filesystem::remove(run_file);
-    swap_in_dataset(staging, out);
+    summary.kept = swap_in_dataset(staging, out);
     return summary;
 }
 

@@ -32,21 +32,33 @@ TEST_CASE("an absent, empty or earlier dataset directory may be replaced; anythi
     CHECK(e.file() == (dir / "photos").string());
     CHECK(e.field() == "--out");
     CHECK_THAT(e.problem(), Catch::Contains("refusing to replace"));
+    std::filesystem::create_directories(dir / "earlier" / "frames");
+    std::ofstream(dir / "earlier" / "frames" / "000000.pcd") << "ours";
+    CHECK(checked_dataset_dir(dir / "earlier") == dir / "earlier");
+    std::ofstream(dir / "earlier" / "frames" / "mine.txt") << "not ours";
+    CHECK_THAT(test::input_error_of([&] { checked_dataset_dir(dir / "earlier"); }).problem(), Catch::Contains("frames/mine.txt"));
     std::ofstream(dir / "file") << "x";
     CHECK(test::input_error_of([&] { checked_dataset_dir(dir / "file"); }).field() == "--out");
 }
 
-TEST_CASE("the staging directory replaces the dataset and leaves nothing beside it", "[dataset_directory]") {
+TEST_CASE("the staging directory replaces ladarsim's entries, keeps the user's and leaves nothing beside it", "[dataset_directory]") {
     const ScratchDir dir;
     const auto out = dir / "run";
     CHECK(staging_dir(out) == dir / "run.partial");
-    std::filesystem::create_directories(out);
-    std::ofstream(out / "stale.pcd") << "old";
-    std::filesystem::create_directories(staging_dir(out));
+    std::filesystem::create_directories(out / "frames");
+    std::ofstream(out / "frames" / "000009.pcd") << "old";
+    std::ofstream(out / "manifest.json") << "old";
+    std::ofstream(out / "detections-vrbnn.json") << "old";
+    std::ofstream(out / "NOTES.txt") << "mine";
+    std::filesystem::create_directories(out / "analysis");
+    std::filesystem::create_directories(staging_dir(out) / "frames");
     std::ofstream(staging_dir(out) / "manifest.json") << "{}";
-    swap_in_dataset(staging_dir(out), out);
-    CHECK(std::filesystem::exists(out / "manifest.json"));
-    CHECK_FALSE(std::filesystem::exists(out / "stale.pcd"));
+    CHECK(swap_in_dataset(staging_dir(out), out) == std::vector<std::string>{"NOTES.txt", "analysis/"});
+    CHECK(read_json(out / "manifest.json") == nlohmann::json::object());
+    CHECK_FALSE(std::filesystem::exists(out / "frames" / "000009.pcd"));
+    CHECK_FALSE(std::filesystem::exists(out / "detections-vrbnn.json"));
+    CHECK(std::filesystem::exists(out / "NOTES.txt"));
+    CHECK(std::filesystem::exists(out / "analysis"));
     CHECK_FALSE(std::filesystem::exists(staging_dir(out)));
     CHECK_FALSE(std::filesystem::exists(dir / "run.old"));
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "ladarsim/sensor_model/scenario.h"
 
@@ -57,6 +58,7 @@ struct DatasetSummary {
     std::size_t background_points = 0;  ///< points of background.pcd (0: nothing static, no file)
     bool interrupted = false;           ///< stopped early; `frames` were finished
     std::filesystem::path out_dir;
+    std::vector<std::string> kept;      ///< the user's entries of an earlier dataset in out_dir, kept
 };
 
 /// Renders every frame of a scenario and writes the dataset:
@@ -64,8 +66,9 @@ struct DatasetSummary {
 ///   the static scene alone, noise-free, from each gimbal pointing used (the initial map that
 ///   detection subtracts)
 /// Each file is written under a temporary name and renamed when complete, inside `<out_dir>.partial`,
-/// which replaces `out_dir` once every file is there (dataset_directory.h). `out_dir` may be absent,
-/// empty or an earlier dataset; any other existing path is an InputError, checked before rendering starts.
+/// whose entries replace ladarsim's own in `out_dir` once every file is there (dataset_directory.h):
+/// the user's files beside an earlier dataset are kept. `out_dir` may be absent, empty or an earlier
+/// dataset; any other existing path is an InputError, checked before rendering starts.
 /// A finished frame leaves a record beside its files (frames/NNNNNN.log.json and .truth.json),
 /// which is how a resumed run, or the first process of a team, knows it is done; the records are
 /// merged into ground_truth.json and manifest.json at the end. With a team, the first process
