@@ -29,7 +29,7 @@ rc=$?
 [ "$(wc -l <"$work/stderr")" -eq 1 ] && grep -q "frames/mine.txt" "$work/stderr" || fail "no one-line refusal naming frames/mine.txt: $(cat "$work/stderr")"
 grep -q "^frame " "$work/stderr" && fail "rendering started before the refusal"
 [ "$before" = "$(ls -R "$work/d" | md5sum)" ] || fail "the refused directory was changed"
-rm "$work/d/frames/mine.txt"
+rm -f "$work/d/frames/mine.txt"
 
 # The importers follow the same rule.
 pcap="$src/../shared/data/vlp16/velodyne_vlp16.pcap"

@@ -95,3 +95,24 @@ TEST_CASE("a recorded dataset: its frames, and a manifest naming the source and 
     CHECK_THROWS_AS(write_recorded_dataset(frames, sensor, dir / "photos", dir / "capture.pcap"), InputError);
     CHECK(std::filesystem::exists(dir / "photos" / "holiday.jpg"));
 }
+
+TEST_CASE("a mount point is a directory on another device than its parent, refused as --out", "[dataset_directory]") {
+    // The CLI test mounts a tmpfs where a private mount namespace can be had; this checks the
+    // detection itself on the device ids of a directory and its parent.
+    const ScratchDir dir;
+    std::filesystem::create_directories(dir / "plain");
+    CHECK_FALSE(is_mount_point(dir / "plain"));
+    CHECK(is_mount_point("/proc"));  // procfs: always its own file system on Linux
+    const InputError e = test::input_error_of([&] { checked_dataset_dir("/proc"); });
+    CHECK(e.field() == "--out");
+    CHECK_THAT(e.problem(), Catch::Contains("mount point"));
+}
+
+TEST_CASE("--out through a symbolic link is the link's target; a link to nothing is refused", "[dataset_directory]") {
+    const ScratchDir dir;
+    std::filesystem::create_directories(dir / "target");
+    std::filesystem::create_directory_symlink(dir / "target", dir / "link");
+    CHECK(checked_dataset_dir(dir / "link") == std::filesystem::canonical(dir / "target"));
+    std::filesystem::create_directory_symlink(dir / "nowhere", dir / "dangling");
+    CHECK_THAT(test::input_error_of([&] { checked_dataset_dir(dir / "dangling"); }).problem(), Catch::Contains("link to nothing"));
+}
