@@ -37,7 +37,13 @@ struct DetectCommand {
     int run() {
         detector.method = detect::method_from_string(method_name);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
-        if (sequence.background.empty()) spdlog::warn("{}: no background.pcd: nothing is subtracted", dataset_dir);
+        // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
+        // recorded one has none.
+        if (!std::filesystem::exists(std::filesystem::path(dataset_dir) / "background.pcd"))
+            spdlog::warn("{}: no background.pcd (a recorded dataset has no initial map): nothing is subtracted, every "
+                         "return is a candidate", dataset_dir);
+        else if (sequence.background.empty())
+            spdlog::info("{}: background.pcd has 0 points (nothing static in view): nothing to subtract", dataset_dir);
         const auto detections = detect::detect_sequence(sequence, detector);
         nlohmann::json out = {{"method", method_name},
                               {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda},

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "command.h"
@@ -30,6 +31,8 @@ int main(int argc, char** argv) {
     apps::add_view_command(app, exit_code);
     apps::add_bench_command(app, exit_code);
 
+    // Diagnostics on stderr, results on stdout.
+    spdlog::set_default_logger(spdlog::stderr_color_mt("ladarsim"));
     spdlog::set_pattern("%^%l%$: %v");
     // The parsed subcommand runs inside parse(), as its callback.
     return apps::exit_code_of(

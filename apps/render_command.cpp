@@ -37,10 +37,10 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                     double(count) / s.frames);
     }
     std::printf("wrote %s/frames/NNNNNN.pcd (point clouds: PCL, CloudCompare), frames/NNNNNN.exr (range images),\n"
-                "      ground_truth.json, manifest.json%s\n",
+                "      ground_truth.json, manifest.json and background.pcd (%s)\n",
                 s.out_dir.string().c_str(),
-                s.background_points ? (" and background.pcd (" + std::to_string(s.background_points) +
-                                       " points of the static scene)").c_str() : "");
+                s.background_points ? (std::to_string(s.background_points) + " points of the static scene").c_str()
+                                    : "0 points: nothing static in view, nothing for detection to subtract");
     if (!s.kept.empty()) std::printf("%s\n", kept_files_note(s.kept, s.out_dir).c_str());
 }
 

@@ -50,12 +50,16 @@ nlohmann::json render_json(const RenderSettings& r) {
 /// removed, noise off) over every direction the frames looked, with beams at half the sensor's
 /// pitch so that a static surface's returns in any frame fall among the survey's points. One
 /// centre sub-ray per beam: the map holds surfaces, not footprints. Returns the number of
-/// points, 0 (and no file) when the scene has nothing static.
+/// points. The file is always written, with 0 points when the scene has nothing static (or
+/// nothing static in view): one rule, so that its absence means a recorded dataset.
 std::size_t write_background_map(const Scenario& scenario, const std::vector<GimbalPointing>& pointings,
                                  const std::filesystem::path& file) {
     Scenario survey = scenario;
     std::erase_if(survey.scene.objects, [](const scene::SceneObject& o) { return !o.trajectory.is_static(); });
-    if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) return 0;
+    if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) {
+        write_frame_pcd(file, Frame{});
+        return 0;
+    }
     survey.mount.cue_object_id = 0;
     survey.render.noise = false;
     survey.render.jitter = false;
