@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "option_checks.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/dataset/json_file.h"
 
@@ -30,7 +32,8 @@ struct DetectCommand {
         detect_cmd->add_option("--bias", detector.bias_m, "V-RBNN bias, m (Algorithm 1: 0.01)");
         detect_cmd->add_option("--resolution", detector.background_resolution_m, "Background octree voxel, m");
         detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)");
-        detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)");
+        detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)")
+            ->check(whole_number(1, std::numeric_limits<std::uint32_t>::max()));
         return detect_cmd;
     }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -12,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "option_checks.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame.h"
 #include "stop_signal.h"
@@ -65,10 +67,12 @@ struct RenderCommand {
                            "Output directory (created; an earlier dataset's files there are replaced, yours beside them kept); with several scenarios, "
                            "one directory per scenario inside it, named after the file")
             ->required();
-        render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")->check(CLI::PositiveNumber);
-        render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)");
+        render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")
+            ->check(whole_number(1, std::numeric_limits<int>::max()));
+        render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)")
+            ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
         render->add_option("--threads", threads, "Worker threads (default: all cores); output does not depend on it")
-            ->check(CLI::NonNegativeNumber);
+            ->check(whole_number(0, std::numeric_limits<int>::max()));
         render->add_flag("--quiet", quiet, "No progress output");
         render->add_flag("--resume", resume,
                          "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
