@@ -40,6 +40,9 @@ struct DetectCommand {
     int run() {
         detector.method = detect::method_from_string(method_name);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
+        // Checked before any work: a target the ground truth lacks, in the user's terms.
+        const auto target = target_id ? std::optional<std::uint32_t>(target_id) : detect::default_target(sequence);
+        if (target) detect::check_target(sequence, *target, std::filesystem::path(dataset_dir) / "ground_truth.json");
         // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
         // recorded one has none.
         if (!std::filesystem::exists(std::filesystem::path(dataset_dir) / "background.pcd"))
@@ -60,7 +63,6 @@ struct DetectCommand {
             found += d.found && !d.predicted;
             predicted += d.predicted;
         }
-        const auto target = target_id ? std::optional<std::uint32_t>(target_id) : detect::default_target(sequence);
         if (target) {
             // The supervised run EAO needs is only possible with ground truth; it is stored here so
             // that `eval` scores exactly what this configuration did.
