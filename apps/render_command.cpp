@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "progress.h"
 #include "option_checks.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame.h"
@@ -100,17 +101,12 @@ struct RenderCommand {
             options.fail_at_frame = fail_at_frame;
             std::signal(SIGINT, request_stop);
             std::signal(SIGTERM, request_stop);
-            if (!quiet && speaking) {
-                options.progress = [](int done, int total) {
-                    std::fprintf(stderr, "\rframe %d/%d", done, total);
-                    if (done == total) std::fprintf(stderr, "\n");
-                };
-            }
+            if (!quiet && speaking) options.progress = progress_lines("frame");
             const auto summary = sensor_model::render_dataset(scenario, options);
             if (summary.interrupted) {
                 if (speaking)
-                    std::fprintf(stderr, "\ninterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
-                                 summary.frames, summary.out_dir.string().c_str());
+                    std::fprintf(stderr, "%sinterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
+                                 !quiet && stderr_is_terminal() ? "\n" : "", summary.frames, summary.out_dir.string().c_str());
                 return 130;
             }
             if (speaking) print_summary(scenario, summary);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "command.h"
+#include "progress.h"
 #include "option_checks.h"
 #include "plot_script.h"
 #include "ladarsim/experiments/table1.h"
@@ -49,7 +50,7 @@ struct Table1Command {
         const auto drone = std::make_shared<scene::Model>(scene::make_quadcopter());
         const nlohmann::json rows = experiments::table1_comparison(
             sensor_model::sensor_preset("paper_ladar"), table_samples, plate, drone, table_frames, table1->count("--seed") ? seed : 1,
-            [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
+            progress_lines("range"));
         const std::string markdown = experiments::table1_markdown(rows);
         std::cout << markdown;
         if (!table_json.empty()) write_json(table_json, rows);
