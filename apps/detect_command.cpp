@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "command.h"
 #include "ladarsim/detect/clustering.h"
+#include "option_checks.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/dataset/json_file.h"
 
@@ -29,29 +31,39 @@ struct DetectCommand {
             ->capture_default_str();
         detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
         detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m")
-            ->check(CLI::PositiveNumber)
+            ->check(positive_number())
             ->capture_default_str();
         detect_cmd->add_option("--lambda", detector.lambda,
                                "V-RBNN lambda (default: a radius of 1.2 of the dataset sensor's coarser beam pitch per "
                                "metre, 180 for the paper's raster; Algorithm 1's own is 7)")
-            ->check(CLI::PositiveNumber);
+            ->check(positive_number());
         detect_cmd->add_option("--bias", detector.bias_m, "V-RBNN bias, m (Algorithm 1: 0.01)")
-            ->check(CLI::NonNegativeNumber)
+            ->check(positive_number(true))
             ->capture_default_str();
         detect_cmd->add_option("--resolution", detector.background_resolution_m, "Background octree voxel, m")
-            ->check(CLI::PositiveNumber)
+            ->check(positive_number())
             ->capture_default_str();
         detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)")
-            ->check(CLI::NonNegativeNumber)
+            ->check(positive_number(true))
             ->capture_default_str();
-        detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)");
+        detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)")
+            ->check(whole_number(1, std::numeric_limits<std::uint32_t>::max()));
         return detect_cmd;
     }
 
     int run() {
         detector.method = detect::method_from_string(method_name);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
-        if (sequence.background.empty()) spdlog::warn("{}: no background.pcd: nothing is subtracted", dataset_dir);
+        // Checked before any work: a target the ground truth lacks, in the user's terms.
+        const auto target = target_id ? std::optional<std::uint32_t>(target_id) : detect::default_target(sequence);
+        if (target) detect::check_target(sequence, *target, std::filesystem::path(dataset_dir) / "ground_truth.json");
+        // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
+        // recorded one has none.
+        if (!std::filesystem::exists(std::filesystem::path(dataset_dir) / "background.pcd"))
+            spdlog::warn("{}: no background.pcd (a recorded dataset has no initial map): nothing is subtracted, every "
+                         "return is a candidate", dataset_dir);
+        else if (sequence.background.empty())
+            spdlog::info("{}: background.pcd has 0 points (nothing static in view): nothing to subtract", dataset_dir);
         const auto detections = detect::detect_sequence(sequence, detector);
         nlohmann::json out = {{"method", method_name},
                               {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda.value_or(detect::default_lambda(sequence.sensor))},
@@ -66,7 +78,6 @@ struct DetectCommand {
             found += d.found && !d.predicted;
             predicted += d.predicted;
         }
-        const auto target = target_id ? std::optional<std::uint32_t>(target_id) : detect::default_target(sequence);
         if (target) {
             // The supervised run EAO needs is only possible with ground truth; it is stored here so
             // that `eval` scores exactly what this configuration did.

@@ -41,6 +41,15 @@ struct EvalCommand {
         run.iou = in["supervised"]["iou"].get<std::vector<double>>();
         run.initialised = in["supervised"]["initialised"].get<std::vector<bool>>();
         run.failures = in["supervised"]["failures"].get<int>();
+        // Detections of another run of the dataset (re-rendered since, or another --frames) would
+        // be scored frame by frame against the wrong ground truth.
+        if (detections.size() != sequence.frames.size() || run.iou.size() != detections.size() ||
+            run.initialised.size() != detections.size())
+            throw InputError(detections_file, "detections",
+                             "holds " + std::to_string(detections.size()) + " frames, the dataset " + dataset_dir + " has " +
+                                 std::to_string(sequence.frames.size()) +
+                                 ": they were computed on another run of it; run `ladarsim detect " + dataset_dir + "` again");
+        detect::check_target(sequence, in["target"].get<std::uint32_t>(), std::filesystem::path(dataset_dir) / "ground_truth.json");
         const auto interval = detect::vot_length_interval({static_cast<int>(detections.size())});
         nlohmann::json scores = detect::evaluate(sequence, detections, run, in["target"].get<std::uint32_t>(), interval);
         scores["method"] = in.value("method", "");

@@ -1,5 +1,7 @@
 #include "exit_codes.h"
 
+#include <string>
+
 #include <cstdio>
 #include <exception>
 
@@ -22,6 +24,19 @@ int exit_code_of(const std::function<int()>& command, const MpiTeam* team) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;
     }
+}
+
+int check_subcommand(const CLI::App& app, int argc, const char* const* argv) {
+    const std::string first = argc > 1 ? argv[1] : "";
+    if (!first.empty() && first[0] == '-') return 0;
+    std::string valid;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        if (sub->check_name(first)) return 0;
+        valid += (valid.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (first.empty()) std::fprintf(stderr, "error: a subcommand is required: %s (ladarsim --help)\n", valid.c_str());
+    else std::fprintf(stderr, "error: unknown subcommand '%s'; the subcommands are %s (ladarsim --help)\n", first.c_str(), valid.c_str());
+    return 2;
 }
 
 }  // namespace ladarsim::apps

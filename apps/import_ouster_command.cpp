@@ -30,8 +30,8 @@ struct ImportOusterCommand {
         const auto frames = read_ouster_pcap(pcap_file, calibration);
         // The manifest holds the resolved sensor with its derived geometry, which detection reads.
         const sensor_model::Sensor sensor = sensor_model::read_sensor(sensor_model::ouster_sensor_json(calibration), metadata_file);
-        write_recorded_dataset(frames, sensor_model::to_json(sensor), out_dir, pcap_file);
-        print_import_summary(frames, pcap_file, out_dir);
+        const auto kept = write_recorded_dataset(frames, sensor_model::to_json(sensor), out_dir, pcap_file);
+        print_import_summary(frames, pcap_file, out_dir, kept);
         return 0;
     }
 };

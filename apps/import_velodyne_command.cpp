@@ -24,8 +24,8 @@ struct ImportVelodyneCommand {
     int run() {
         const auto frames = read_velodyne_vlp16_pcap(pcap_file);
         // The manifest names the sensor, so that detection takes the VLP-16's geometry.
-        write_recorded_dataset(frames, sensor_model::to_json(sensor_model::sensor_preset("velodyne_vlp16")), out_dir, pcap_file);
-        print_import_summary(frames, pcap_file, out_dir);
+        const auto kept = write_recorded_dataset(frames, sensor_model::to_json(sensor_model::sensor_preset("velodyne_vlp16")), out_dir, pcap_file);
+        print_import_summary(frames, pcap_file, out_dir, kept);
         return 0;
     }
 };

@@ -1,11 +1,14 @@
 // The ladarsim command line: builds the app from the subcommands (one file each, see command.h),
 // parses the arguments and runs the subcommand given, nothing more.
 #include <memory>
+#include <string>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "exit_codes.h"
 #include "mpi_team.h"
 
@@ -30,6 +33,12 @@ int main(int argc, char** argv) {
     apps::add_view_command(app, exit_code);
     apps::add_bench_command(app, exit_code);
 
+    // Diagnostics on stderr, results on stdout.
+    app.set_version_flag("--version", "ladarsim " + software_json().at("version").get<std::string>());
+    // CLI11 says "A subcommand is required" for a misspelt one too: name it, and list the valid ones.
+    if (const int code = apps::check_subcommand(app, argc, argv); code != 0) return code;
+
+    spdlog::set_default_logger(spdlog::stderr_color_mt("ladarsim"));
     spdlog::set_pattern("%^%l%$: %v");
     // The parsed subcommand runs inside parse(), as its callback.
     return apps::exit_code_of(

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -12,6 +13,9 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "progress.h"
+#include "option_checks.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame.h"
 #include "stop_signal.h"
 #include "ladarsim/sensor_model/render_dataset.h"
@@ -36,10 +40,11 @@ void print_summary(const sensor_model::Scenario& scenario, const sensor_model::D
                     double(count) / s.frames);
     }
     std::printf("wrote %s/frames/NNNNNN.pcd (point clouds: PCL, CloudCompare), frames/NNNNNN.exr (range images),\n"
-                "      ground_truth.json, manifest.json%s\n",
+                "      ground_truth.json, manifest.json and background.pcd (%s)\n",
                 s.out_dir.string().c_str(),
-                s.background_points ? (" and background.pcd (" + std::to_string(s.background_points) +
-                                       " points of the static scene)").c_str() : "");
+                s.background_points ? (std::to_string(s.background_points) + " points of the static scene").c_str()
+                                    : "0 points: nothing static in view, nothing for detection to subtract");
+    if (!s.kept.empty()) std::printf("%s\n", kept_files_note(s.kept, s.out_dir).c_str());
 }
 
 struct RenderCommand {
@@ -60,13 +65,15 @@ struct RenderCommand {
                       "(mpirun -n N ladarsim render ...), with output identical to one process");
         render->add_option("scenario", scenario_files, "Scenario file(s) (JSON, see docs/scenario.md)")->required();
         render->add_option("--out", out_dir,
-                           "Output directory (created; an earlier dataset there is replaced); with several scenarios, "
+                           "Output directory (created; an earlier dataset's files there are replaced, yours beside them kept); with several scenarios, "
                            "one directory per scenario inside it, named after the file")
             ->required();
-        render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")->check(CLI::PositiveNumber);
-        render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)");
+        render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")
+            ->check(whole_number(1, std::numeric_limits<int>::max()));
+        render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)")
+            ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
         render->add_option("--threads", threads, "Worker threads (default: all cores); output does not depend on it")
-            ->check(CLI::NonNegativeNumber);
+            ->check(whole_number(0, std::numeric_limits<int>::max()));
         render->add_flag("--quiet", quiet, "No progress output");
         render->add_flag("--resume", resume,
                          "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
@@ -94,17 +101,12 @@ struct RenderCommand {
             options.fail_at_frame = fail_at_frame;
             std::signal(SIGINT, request_stop);
             std::signal(SIGTERM, request_stop);
-            if (!quiet && speaking) {
-                options.progress = [](int done, int total) {
-                    std::fprintf(stderr, "\rframe %d/%d", done, total);
-                    if (done == total) std::fprintf(stderr, "\n");
-                };
-            }
+            if (!quiet && speaking) options.progress = progress_lines("frame");
             const auto summary = sensor_model::render_dataset(scenario, options);
             if (summary.interrupted) {
                 if (speaking)
-                    std::fprintf(stderr, "\ninterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
-                                 summary.frames, summary.out_dir.string().c_str());
+                    std::fprintf(stderr, "%sinterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",
+                                 !quiet && stderr_is_terminal() ? "\n" : "", summary.frames, summary.out_dir.string().c_str());
                 return 130;
             }
             if (speaking) print_summary(scenario, summary);

@@ -3,10 +3,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
 #include "command.h"
+#include "progress.h"
+#include "option_checks.h"
 #include "plot_script.h"
 #include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/procedural_models.h"
@@ -32,8 +35,8 @@ struct Table1Command {
         table1->add_option("--markdown", table_markdown, "Write the table as markdown");
         table1->add_option("--plot", table_plot, "Draw counts against range into this PNG (needs python3-matplotlib)");
         table1->add_option("--frames", table_frames, "Frames per range, target and noise setting (random sub-beam offsets)")
-            ->check(CLI::PositiveNumber);
-        table1->add_option("--seed", seed, "Random seed");
+            ->check(whole_number(1, std::numeric_limits<int>::max()));
+        table1->add_option("--seed", seed, "Random seed")->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
         table1->add_option("--footprint-samples", table_samples,
                            "Sub-rays per beam (converged at 1024: with the paper's power a beam whose footprint only\n"
                            "grazes the target still detects it, so sparse sub-rays under-count)")
@@ -47,7 +50,7 @@ struct Table1Command {
         const auto drone = std::make_shared<scene::Model>(scene::make_quadcopter());
         const nlohmann::json rows = experiments::table1_comparison(
             sensor_model::sensor_preset("paper_ladar"), table_samples, plate, drone, table_frames, table1->count("--seed") ? seed : 1,
-            [](int done, int total) { std::fprintf(stderr, "\rrange %d/%d", done, total); if (done == total) std::fprintf(stderr, "\n"); });
+            progress_lines("range"));
         const std::string markdown = experiments::table1_markdown(rows);
         std::cout << markdown;
         if (!table_json.empty()) write_json(table_json, rows);

@@ -23,8 +23,17 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::commit() {
+    // A stream that failed made no system call since (its writes stop at the first failure), so
+    // errno still holds the system's reason; else closing flushes, and a failure there sets it.
+    const bool failed_earlier = stream_.fail();
+    int reason = failed_earlier ? errno : 0;
+    if (!failed_earlier) errno = 0;
     stream_.close();
-    if (stream_.fail()) throw std::runtime_error(temporary_path_.string() + ": write failed");
+    if (!failed_earlier) reason = errno;
+    if (stream_.fail()) {
+        throw std::runtime_error(final_path_.string() + ": cannot write: " +
+                                 (reason ? std::strerror(reason) : "the stream failed (no reason given by the system)"));
+    }
     std::filesystem::rename(temporary_path_, final_path_);
     committed_ = true;
 }

@@ -1,36 +1,116 @@
 #include "ladarsim/dataset/dataset_directory.h"
 
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <regex>
+
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/input_error.h"
 
 namespace ladarsim {
 
+namespace {
+
+std::string entry_name(const std::filesystem::directory_entry& e) {
+    return e.path().filename().string() + (e.is_directory() ? "/" : "");
+}
+
+/// What ladarsim writes inside frames/: NNNNNN.pcd and .exr, a run's per-frame records, and the
+/// temporaries of an interrupted write.
+bool is_frame_file(const std::string& name) {
+    static const std::regex frame_file(R"(\d{6,}\.(pcd|exr|log\.json|truth\.json)(\.tmp)?)");
+    return std::regex_match(name, frame_file);
+}
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+}  // namespace
+
+bool is_dataset_entry(const std::string& name) {
+    static const std::regex derived(R"((detections|eval)-.*\.json|preview\.png)");
+    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd" ||
+           std::regex_match(name, derived);
+}
+
+bool is_mount_point(const std::filesystem::path& dir) {
+    struct stat self {}, parent {};
+    if (::stat(dir.c_str(), &self) != 0 || ::stat(dir.parent_path().c_str(), &parent) != 0) return false;
+    return self.st_dev != parent.st_dev;
+}
+
 std::filesystem::path checked_dataset_dir(const std::filesystem::path& requested) {
     std::filesystem::path out = std::filesystem::absolute(requested).lexically_normal();
     if (!out.has_filename()) out = out.parent_path();
     std::error_code ec;
+    if (std::filesystem::is_symlink(out, ec)) {
+        if (!std::filesystem::exists(out, ec))
+            throw InputError(out.string(), "--out", "is a symbolic link to nothing (" +
+                                                        std::filesystem::read_symlink(out, ec).string() + ")");
+        // The link stays; the dataset goes where it points.
+        out = std::filesystem::canonical(out, ec);
+    }
+    if (out == out.root_path()) throw InputError(out.string(), "--out", "is the root directory; give a directory inside it");
     if (!std::filesystem::exists(out, ec)) return out;
     if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string(), "--out", "exists and is not a directory");
+    if (is_mount_point(out))
+        throw InputError(out.string(), "--out",
+                         "is a mount point: the dataset is staged beside it in " + out.filename().string() +
+                             ".partial, on another file system, and could not be moved in; give a directory inside it, "
+                             "e.g. --out " + (out / "dataset").string());
     if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / "manifest.json", ec))
         throw InputError(out.string(), "--out",
                          "is a non-empty directory without a ladarsim manifest.json; refusing to replace it");
+    if (std::filesystem::is_directory(out / "frames", ec)) {
+        std::vector<std::string> foreign;
+        for (const auto& e : std::filesystem::directory_iterator(out / "frames"))
+            if (!is_frame_file(e.path().filename().string())) foreign.push_back("frames/" + entry_name(e));
+        std::sort(foreign.begin(), foreign.end());
+        if (!foreign.empty())
+            throw InputError(out.string(), "--out",
+                             "holds files ladarsim did not write inside frames/, which a new dataset replaces: " +
+                                 joined(foreign) + "; move them out first");
+    }
     return out;
 }
 
 std::filesystem::path staging_dir(const std::filesystem::path& out) { return out.string() + ".partial"; }
 
-void swap_in_dataset(const std::filesystem::path& staging, const std::filesystem::path& out) {
+std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, const std::filesystem::path& out) {
     const std::filesystem::path old = out.string() + ".old";
     std::filesystem::remove_all(old);
-    if (std::filesystem::exists(out)) std::filesystem::rename(out, old);
-    std::filesystem::rename(staging, out);
+    if (!std::filesystem::exists(out)) {
+        std::filesystem::rename(staging, out);
+        return {};
+    }
+    // Entry by entry, so that `out` itself (a mount's or link's target, the current directory)
+    // stays, and so do the user's files in it.
+    std::vector<std::string> kept;
+    std::filesystem::create_directory(old);
+    for (const auto& e : std::filesystem::directory_iterator(out)) {
+        if (is_dataset_entry(e.path().filename().string())) std::filesystem::rename(e.path(), old / e.path().filename());
+        else kept.push_back(entry_name(e));
+    }
+    for (const auto& e : std::filesystem::directory_iterator(staging)) std::filesystem::rename(e.path(), out / e.path().filename());
+    std::filesystem::remove_all(staging);
     std::filesystem::remove_all(old);
+    std::sort(kept.begin(), kept.end());
+    return kept;
+}
+
+std::string kept_files_note(const std::vector<std::string>& kept, const std::filesystem::path& out) {
+    if (kept.empty()) return "";
+    return "kept your files in " + out.string() + " (not written by ladarsim): " + joined(kept);
 }
 
 nlohmann::json software_json() { return {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}; }
 
-void write_recorded_dataset(const std::vector<Frame>& frames, const nlohmann::json& sensor,
-                            const std::filesystem::path& out_dir, const std::filesystem::path& source) {
+std::vector<std::string> write_recorded_dataset(const std::vector<Frame>& frames, const nlohmann::json& sensor,
+                                                const std::filesystem::path& out_dir, const std::filesystem::path& source) {
     const std::filesystem::path out = checked_dataset_dir(out_dir);
     const std::filesystem::path staging = staging_dir(out);
     std::filesystem::remove_all(staging);
@@ -45,7 +125,7 @@ void write_recorded_dataset(const std::vector<Frame>& frames, const nlohmann::js
                                            {"recorded_from", std::filesystem::absolute(source).string()},
                                            {"sensor", sensor},
                                            {"frames", log}});
-    swap_in_dataset(staging, out);
+    return swap_in_dataset(staging, out);
 }
 
 }  // namespace ladarsim

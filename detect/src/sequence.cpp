@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/input_error.h"
@@ -47,6 +49,28 @@ std::optional<std::uint32_t> default_target(const Sequence& s) {
         for (const auto& o : f.objects)
             if (o.object_class == "drone") return o.object_id;
     return std::nullopt;
+}
+
+void check_target(const Sequence& s, std::uint32_t target, const std::filesystem::path& truth_file) {
+    const std::string field = "--target " + std::to_string(target);
+    if (s.truth.empty()) throw InputError(truth_file.string(), field, "no ground truth (a recorded dataset): nothing to score against");
+    std::map<std::uint32_t, std::string> objects;
+    for (const auto& f : s.truth)
+        for (const auto& o : f.objects) objects.emplace(o.object_id, o.object_class);
+    if (!objects.count(target)) {
+        std::string known;
+        for (const auto& [id, cls] : objects) known += (known.empty() ? "" : ", ") + std::to_string(id) + " (" + cls + ")";
+        throw InputError(truth_file.string(), field, "no object " + std::to_string(target) + " in the ground truth; its objects are " +
+                                                         (known.empty() ? "none" : known));
+    }
+    for (std::size_t i = 0; i < s.frames.size(); ++i) {
+        if (truth_box(s, i, target)) continue;
+        throw InputError(truth_file.string(), field,
+                         "object " + std::to_string(target) + " (" + objects[target] + ") has no box in frame " + std::to_string(i) +
+                             " of " + std::to_string(s.frames.size()) + " (" +
+                             (i < s.truth.size() ? "not in the scene then" : "the ground truth has " + std::to_string(s.truth.size()) + " frames") +
+                             "); scoring needs the target in every frame");
+    }
 }
 
 std::optional<OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target) {

@@ -47,10 +47,11 @@ nlohmann::json render_json(const RenderSettings& r) {
 }
 
 /// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
-/// and the objects that do not move, never a drone, bird or aircraft; noise off) over every direction the frames looked, with beams at half the sensor's
-/// pitch so that a static surface's returns in any frame fall among the survey's points. One
+/// and the objects that do not move, never a drone, bird or aircraft; noise off) over every
+/// direction the frames looked, with beams at half the sensor's pitch so that a static surface's returns in any frame fall among the survey's points. One
 /// centre sub-ray per beam: the map holds surfaces, not footprints. Returns the number of
-/// points, 0 (and no file) when the scene has nothing static.
+/// points. The file is always written, with 0 points when the scene has nothing static (or
+/// nothing static in view): one rule, so that its absence means a recorded dataset.
 std::size_t write_background_map(const Scenario& scenario, const std::vector<GimbalPointing>& pointings,
                                  const std::filesystem::path& file) {
     Scenario survey = scenario;
@@ -62,7 +63,10 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
                             o.object_class == ObjectClass::plane;
         return target || !o.trajectory.is_static();
     });
-    if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) return 0;
+    if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) {
+        write_frame_pcd(file, Frame{});
+        return 0;
+    }
     survey.mount.cue_object_id = 0;
     survey.render.noise = false;
     survey.render.jitter = false;
@@ -236,7 +240,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         std::filesystem::remove(truth_of(k));
     }
     std::filesystem::remove(run_file);
-    swap_in_dataset(staging, out);
+    summary.kept = swap_in_dataset(staging, out);
     return summary;
 }
 

@@ -1,7 +1,7 @@
 # Sourced by the command-line tests: arguments LADARSIM_BINARY SOURCE_DIR, a scratch directory
 # removed on exit, and a failure counter.
 set -u
-bin=$1
+bin=$(realpath "$1")
 src=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -71,3 +71,19 @@ TEST_CASE("a directory that does not exist: runtime_error naming the temporary",
     }
     CHECK(std::filesystem::is_empty(dir.path()));
 }
+
+TEST_CASE("a full disk: runtime_error naming the file and the system's reason", "[atomic_file]") {
+    const ScratchDir dir;
+    const auto path = dir / "out.bin";
+    // The temporary is opened through a link to /dev/full, where every write fails with ENOSPC.
+    std::filesystem::create_symlink("/dev/full", dir / "out.bin.tmp");
+    try {
+        AtomicFile out(path);
+        out.stream() << std::string(1 << 20, 'x');
+        out.commit();
+        FAIL("no exception");
+    } catch (const std::runtime_error& e) {
+        CHECK_THAT(e.what(), Catch::Contains(path.string() + ": cannot write: No space left on device"));
+    }
+    CHECK_FALSE(std::filesystem::exists(path));
+}

@@ -32,21 +32,33 @@ TEST_CASE("an absent, empty or earlier dataset directory may be replaced; anythi
     CHECK(e.file() == (dir / "photos").string());
     CHECK(e.field() == "--out");
     CHECK_THAT(e.problem(), Catch::Contains("refusing to replace"));
+    std::filesystem::create_directories(dir / "earlier" / "frames");
+    std::ofstream(dir / "earlier" / "frames" / "000000.pcd") << "ours";
+    CHECK(checked_dataset_dir(dir / "earlier") == dir / "earlier");
+    std::ofstream(dir / "earlier" / "frames" / "mine.txt") << "not ours";
+    CHECK_THAT(test::input_error_of([&] { checked_dataset_dir(dir / "earlier"); }).problem(), Catch::Contains("frames/mine.txt"));
     std::ofstream(dir / "file") << "x";
     CHECK(test::input_error_of([&] { checked_dataset_dir(dir / "file"); }).field() == "--out");
 }
 
-TEST_CASE("the staging directory replaces the dataset and leaves nothing beside it", "[dataset_directory]") {
+TEST_CASE("the staging directory replaces ladarsim's entries, keeps the user's and leaves nothing beside it", "[dataset_directory]") {
     const ScratchDir dir;
     const auto out = dir / "run";
     CHECK(staging_dir(out) == dir / "run.partial");
-    std::filesystem::create_directories(out);
-    std::ofstream(out / "stale.pcd") << "old";
-    std::filesystem::create_directories(staging_dir(out));
+    std::filesystem::create_directories(out / "frames");
+    std::ofstream(out / "frames" / "000009.pcd") << "old";
+    std::ofstream(out / "manifest.json") << "old";
+    std::ofstream(out / "detections-vrbnn.json") << "old";
+    std::ofstream(out / "NOTES.txt") << "mine";
+    std::filesystem::create_directories(out / "analysis");
+    std::filesystem::create_directories(staging_dir(out) / "frames");
     std::ofstream(staging_dir(out) / "manifest.json") << "{}";
-    swap_in_dataset(staging_dir(out), out);
-    CHECK(std::filesystem::exists(out / "manifest.json"));
-    CHECK_FALSE(std::filesystem::exists(out / "stale.pcd"));
+    CHECK(swap_in_dataset(staging_dir(out), out) == std::vector<std::string>{"NOTES.txt", "analysis/"});
+    CHECK(read_json(out / "manifest.json") == nlohmann::json::object());
+    CHECK_FALSE(std::filesystem::exists(out / "frames" / "000009.pcd"));
+    CHECK_FALSE(std::filesystem::exists(out / "detections-vrbnn.json"));
+    CHECK(std::filesystem::exists(out / "NOTES.txt"));
+    CHECK(std::filesystem::exists(out / "analysis"));
     CHECK_FALSE(std::filesystem::exists(staging_dir(out)));
     CHECK_FALSE(std::filesystem::exists(dir / "run.old"));
 }
@@ -82,4 +94,25 @@ TEST_CASE("a recorded dataset: its frames, and a manifest naming the source and 
     std::ofstream(dir / "photos" / "holiday.jpg") << "not ours";
     CHECK_THROWS_AS(write_recorded_dataset(frames, sensor, dir / "photos", dir / "capture.pcap"), InputError);
     CHECK(std::filesystem::exists(dir / "photos" / "holiday.jpg"));
+}
+
+TEST_CASE("a mount point is a directory on another device than its parent, refused as --out", "[dataset_directory]") {
+    // The CLI test mounts a tmpfs where a private mount namespace can be had; this checks the
+    // detection itself on the device ids of a directory and its parent.
+    const ScratchDir dir;
+    std::filesystem::create_directories(dir / "plain");
+    CHECK_FALSE(is_mount_point(dir / "plain"));
+    CHECK(is_mount_point("/proc"));  // procfs: always its own file system on Linux
+    const InputError e = test::input_error_of([&] { checked_dataset_dir("/proc"); });
+    CHECK(e.field() == "--out");
+    CHECK_THAT(e.problem(), Catch::Contains("mount point"));
+}
+
+TEST_CASE("--out through a symbolic link is the link's target; a link to nothing is refused", "[dataset_directory]") {
+    const ScratchDir dir;
+    std::filesystem::create_directories(dir / "target");
+    std::filesystem::create_directory_symlink(dir / "target", dir / "link");
+    CHECK(checked_dataset_dir(dir / "link") == std::filesystem::canonical(dir / "target"));
+    std::filesystem::create_directory_symlink(dir / "nowhere", dir / "dangling");
+    CHECK_THAT(test::input_error_of([&] { checked_dataset_dir(dir / "dangling"); }).problem(), Catch::Contains("link to nothing"));
 }

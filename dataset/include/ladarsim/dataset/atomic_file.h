@@ -23,7 +23,8 @@ public:
     const std::filesystem::path& temporary_path() const { return temporary_path_; }
 
     /// Flushes, closes and renames the temporary over the final path (replacing any previous
-    /// file there). Throws std::runtime_error if any write failed; the temporary is then removed.
+    /// file there). Throws std::runtime_error "<final_path>: cannot write: <the system's reason>"
+    /// ("No space left on device") if any write failed; the temporary is then removed.
     void commit();
 
 private:

@@ -34,6 +34,11 @@ Sequence load_sequence(const std::filesystem::path& dir);
 /// The id of the first drone in the ground truth (the target to score), if any.
 std::optional<std::uint32_t> default_target(const Sequence& s);
 
+/// Checks that `target` is an object of the ground truth with a box in every frame, as scoring
+/// needs. Throws InputError naming `truth_file` and "--target" and saying, in the user's terms,
+/// which objects there are or in which frame the target is missing.
+void check_target(const Sequence& s, std::uint32_t target, const std::filesystem::path& truth_file);
+
 /// The ground-truth box of `target` in frame i, as the axis-aligned box enclosing it in the
 /// sensor frame (the detector's boxes are axis-aligned there).
 std::optional<OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint32_t target);

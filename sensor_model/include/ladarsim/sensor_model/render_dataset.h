@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "ladarsim/sensor_model/scenario.h"
 
@@ -54,18 +55,20 @@ struct DatasetSummary {
     std::map<std::uint32_t, std::uint64_t> returns_by_object;  ///< object id -> returns over all frames
     double render_seconds = 0.0;
     double beams_per_second = 0.0;
-    std::size_t background_points = 0;  ///< points of background.pcd (0: nothing static, no file)
+    std::size_t background_points = 0;  ///< points of background.pcd (0: nothing static in view)
     bool interrupted = false;           ///< stopped early; `frames` were finished
     std::filesystem::path out_dir;
+    std::vector<std::string> kept;      ///< the user's entries of an earlier dataset in out_dir, kept
 };
 
 /// Renders every frame of a scenario and writes the dataset:
 ///   frames/NNNNNN.pcd, frames/NNNNNN.exr, ground_truth.json, manifest.json, and background.pcd:
 ///   the static scene alone, noise-free, from each gimbal pointing used (the initial map that
-///   detection subtracts)
+///   detection subtracts), always written: 0 points when nothing static is in view
 /// Each file is written under a temporary name and renamed when complete, inside `<out_dir>.partial`,
-/// which replaces `out_dir` once every file is there (dataset_directory.h). `out_dir` may be absent,
-/// empty or an earlier dataset; any other existing path is an InputError, checked before rendering starts.
+/// whose entries replace ladarsim's own in `out_dir` once every file is there (dataset_directory.h):
+/// the user's files beside an earlier dataset are kept. `out_dir` may be absent, empty or an earlier
+/// dataset; any other existing path is an InputError, checked before rendering starts.
 /// A finished frame leaves a record beside its files (frames/NNNNNN.log.json and .truth.json),
 /// which is how a resumed run, or the first process of a team, knows it is done; the records are
 /// merged into ground_truth.json and manifest.json at the end. With a team, the first process

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Progress on a stderr that is not a terminal (a CI log, tee): whole lines, now and then, never a
+# carriage return, and the last line ended.
+# Usage: test_progress_not_a_terminal.sh LADARSIM_BINARY SOURCE_DIR
+source "$(dirname "$0")/harness.sh"
+
+"$bin" render "$src/tests/cli/small.json" --out "$work/d" --frames 40 2>"$work/stderr" >/dev/null || fail "render failed"
+grep -q $'\r' "$work/stderr" && fail "render: a carriage return on a non-terminal stderr: $(od -c "$work/stderr" | head -3)"
+grep -qx "frame 40/40.*" "$work/stderr" || fail "render: no whole line for the last frame: $(cat "$work/stderr")"
+[ "$(tail -c1 "$work/stderr" | od -An -c | tr -d ' ')" = '\n' ] || fail "render: the last line is not ended"
+[ "$(wc -l <"$work/stderr")" -le 12 ] || fail "render: more than occasional lines: $(wc -l <"$work/stderr")"
+
+"$bin" table1 --frames 1 --footprint-samples 4 2>"$work/stderr" >/dev/null || fail "table1 failed"
+grep -q $'\r' "$work/stderr" && fail "table1: a carriage return on a non-terminal stderr"
+grep -q "^range " "$work/stderr" || fail "table1: no progress lines: $(cat "$work/stderr")"
+
+# On a terminal the one updating line stays (script(1) gives the command a pseudo-terminal).
+if command -v script >/dev/null; then
+  script -qec "'$bin' render '$src/tests/cli/small.json' --out '$work/t' --frames 5 >/dev/null" "$work/typescript" >/dev/null 2>&1
+  grep -q $'\r''frame 5/5' "$work/typescript" || fail "no updating line on a terminal: $(od -c "$work/typescript" | head -5)"
+fi
+
+if [ "$failures" -eq 0 ]; then echo "progress: all checks passed"; else echo "progress: $failures failed"; exit 1; fi

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# `ladarsim --version` prints the version; an unknown or missing subcommand is named, with the
+# valid ones listed.
+# Usage: test_version_and_subcommands.sh LADARSIM_BINARY SOURCE_DIR
+source "$(dirname "$0")/harness.sh"
+
+version=$(sed -n 's/^project(ladarsim VERSION \([0-9.]*\).*/\1/p' "$src/CMakeLists.txt")
+"$bin" --version >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 0 ] || fail "--version exited $rc"
+grep -qx "ladarsim $version" "$work/stdout" || fail "--version does not print 'ladarsim $version': $(cat "$work/stdout" "$work/stderr")"
+
+"$bin" preview >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 2 ] || fail "an unknown subcommand exited $rc, expected 2"
+grep -q "unknown subcommand 'preview'" "$work/stderr" || fail "the unknown subcommand is not named: $(cat "$work/stderr")"
+for c in render sensor table1 detect eval import-velodyne import-ouster make-assets view bench; do
+  grep -q "$c" "$work/stderr" || fail "the valid subcommand $c is not listed: $(cat "$work/stderr")"
+done
+grep -q "A subcommand is required" "$work/stderr" && fail "an unknown subcommand is reported as a missing one"
+
+"$bin" >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 2 ] || fail "no subcommand exited $rc, expected 2"
+grep -q "render" "$work/stderr" || fail "no subcommand: the valid ones are not listed: $(cat "$work/stderr")"
+
+# A known subcommand still parses as before.
+"$bin" render --help >/dev/null 2>&1 || fail "render --help failed"
+
+if [ "$failures" -eq 0 ]; then echo "version and subcommands: all checks passed"; else echo "version and subcommands: $failures failed"; exit 1; fi
