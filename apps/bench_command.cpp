@@ -38,8 +38,8 @@ struct BenchCommand {
         };
         const nlohmann::json result = bench::run_benchmarks(bench_options);
         std::printf("pipeline vs raw Embree (rays/s, same rays): %.2f\n", result["pipeline_vs_raw_embree"].get<double>());
-        std::printf("real-time factor (default accuracy, vs %.0f beams/s): %.1f\n", bench::sensor_beams_per_second(),
-                    result["realtime_factor"].get<double>());
+        std::printf("real-time factor (default accuracy, vs the sensor's %.0f beams/s): %.1f\n",
+                    result["realtime"]["sensor_beams_per_s"].get<double>(), result["realtime_factor"].get<double>());
         std::printf("target point-count error vs converged reference: %+.2f %%\n", result["count_error_pct"].get<double>());
         const nlohmann::json& map = result["recorded_map"];
         if (map.contains("skipped")) {

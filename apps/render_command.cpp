@@ -25,9 +25,9 @@ namespace ladarsim::apps {
 namespace {
 
 void print_summary(const sensor_model::Scenario& scenario, const sensor_model::DatasetSummary& s) {
-    std::printf("rendered %d frames of %s in %.2f s (%.0f beams/s, %.1fx the sensor's real time)\n", s.frames,
+    std::printf("rendered %d frames of %s in %.2f s (%.0f beams/s, %.1fx real time: the sensor's %.0f beams/s)\n", s.frames,
                 scenario.file.string().c_str(), s.render_seconds, s.beams_per_second,
-                s.beams_per_second / scenario.sensor.beams_per_second());
+                scenario.sensor.realtime_factor(s.beams_per_second), scenario.sensor.rated_beams_per_second());
     std::printf("returns: %llu in all\n", static_cast<unsigned long long>(s.returns));
     for (const auto& [id, count] : s.returns_by_object) {
         std::string label = id == 0                       ? "background map"

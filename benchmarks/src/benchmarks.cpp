@@ -36,12 +36,12 @@ struct Setting {
 const std::vector<Setting> kSweep = {{0, 0.2}, {0, 0.05}, {0, 0.01}, {16, 0.0}, {64, 0.0}};
 
 /// A setting's speed: the fields every benchmark row starts with.
-json speed(const Setting& s, const Rendering& r) {
+json speed(const Setting& s, const Rendering& r, const Scenario& scenario) {
     return {{"footprint_samples", s.samples},
             {"footprint_tolerance", s.tolerance},
             {"beams_per_s", r.beams_per_second()},
             {"rays_per_beam", r.rays_per_beam()},
-            {"realtime_factor", r.beams_per_second() / sensor_beams_per_second()}};
+            {"realtime_factor", scenario.sensor.realtime_factor(r.beams_per_second())}};
 }
 
 /// Our render of one frame against Embree's traversal alone of the very rays it traced, in the
@@ -99,7 +99,7 @@ json realtime(const Scenario& scenario, const BenchOptions& options) {
         std::uint64_t all = 0, all_reference = 0;
         for (const auto& f : counted.frames) all += f.returns.size();
         for (const auto& f : reference.frames) all_reference += f.returns.size();
-        json row = speed(s, timed);
+        json row = speed(s, timed, scenario);
         row.update({{"target_returns", e.returns},
                     {"reference_target_returns", e.reference_returns},
                     {"count_error_pct", e.count_error_pct},
@@ -112,7 +112,7 @@ json realtime(const Scenario& scenario, const BenchOptions& options) {
             {"frames_timed", indices.size()},
             {"frames_checked", checked.size()},
             {"reference_samples", kReferenceSamples},
-            {"sensor_beams_per_s", sensor_beams_per_second()},
+            {"sensor_beams_per_s", scenario.sensor.rated_beams_per_second()},
             {"settings", settings}};
 }
 
@@ -180,7 +180,7 @@ json recorded_map(const BenchOptions& options) {
         const Rendering r = render_frames(with_footprint(scenario, s.samples, s.tolerance), indices);
         const ObjectError map = compare(r, reference, scene::kBackgroundObjectId);
         const ObjectError target = compare(r, reference, scenario.mount.cue_object_id);
-        json row = speed(s, r);
+        json row = speed(s, r, scenario);
         row.update({{"map_returns", map.returns},
                     {"reference_map_returns", map.reference_returns},
                     {"map_count_error_pct", map.count_error_pct},
@@ -197,8 +197,6 @@ json recorded_map(const BenchOptions& options) {
 }
 
 }  // namespace
-
-double sensor_beams_per_second() { return sensor_model::sensor_preset("paper_ladar").beams_per_second(); }
 
 nlohmann::json run_benchmarks(const BenchOptions& options) {
     const Scenario scenario = sensor_model::load_scenario(options.scenario);

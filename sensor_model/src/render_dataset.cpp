@@ -1,5 +1,6 @@
 #include "ladarsim/sensor_model/render_dataset.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -48,10 +49,14 @@ nlohmann::json render_json(const RenderSettings& r) {
 
 /// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
 /// and the objects that do not move, never a drone, bird or aircraft; noise off) over every
-/// direction the frames looked, with beams at half the sensor's pitch so that a static surface's returns in any frame fall among the survey's points. One
-/// centre sub-ray per beam: the map holds surfaces, not footprints. Returns the number of
-/// points. The file is always written, with 0 points when the scene has nothing static (or
-/// nothing static in view): one rule, so that its absence means a recorded dataset.
+/// direction the frames looked. When the gimbal moved, with beams at half the sensor's pitch over
+/// the field it swept, so that a static surface's returns in any frame fall among the survey's
+/// points; when every frame looked the same way (a fixed gimbal, a single frame), with the
+/// sensor's own beams there: its frames fired in no other direction, and the survey costs one
+/// frame's beams, not six. One centre sub-ray per beam: the map holds surfaces, not footprints.
+/// Returns the number of points. The file is always written, with 0 points when the scene has
+/// nothing static (or nothing static in view): one rule, so that its absence means a recorded
+/// dataset.
 std::size_t write_background_map(const Scenario& scenario, const std::vector<GimbalPointing>& pointings,
                                  const std::filesystem::path& file) {
     Scenario survey = scenario;
@@ -70,6 +75,16 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
     survey.mount.cue_object_id = 0;
     survey.render.noise = false;
     survey.render.jitter = false;
+    survey.render.footprint_samples = 1;
+    const bool one_pointing = std::all_of(pointings.begin(), pointings.end(), [&](const GimbalPointing& p) {
+        return p.az_rad == pointings[0].az_rad && p.el_rad == pointings[0].el_rad;
+    });
+    if (one_pointing) {
+        FrameRenderer renderer(survey);
+        const Frame map = renderer.render_at(0, pointings[0]);
+        write_frame_pcd(file, map);
+        return map.returns.size();
+    }
     constexpr double kDeg = std::numbers::pi / 180.0;
     double az_lo = pointings[0].az_rad, az_hi = az_lo, el_lo = pointings[0].el_rad, el_hi = el_lo;
     for (const auto& p : pointings) {
@@ -95,7 +110,6 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
     raster.sweep = galvo ? galvo->parameters().sweep : GalvoSweep::sawtooth;
     raster.frame_rate_hz = scan.frame_rate_hz();
     survey.sensor.scan = std::make_shared<GalvoRaster>(raster);
-    survey.render.footprint_samples = 1;
     FrameRenderer renderer(survey);
     Frame map = renderer.render_at(0, GimbalPointing{0.5 * (az_lo + az_hi), 0.5 * (el_lo + el_hi)});
     write_frame_pcd(file, map);

@@ -38,6 +38,9 @@ Part read_part(JsonFields& top, const char* key, const std::string& file) {
 
 double Sensor::pulses_per_beam() const { return transmitter.pulse_rate_hz * scan->beam_dwell_s(); }
 double Sensor::beams_per_second() const { return double(scan->columns()) * scan->rows() * scan->frame_rate_hz(); }
+double Sensor::rated_beams_per_second() const {
+    return double(scan->columns()) * scan->rows() * (rated_frame_rate_hz > 0.0 ? rated_frame_rate_hz : scan->frame_rate_hz());
+}
 double Sensor::range_gate_s() const {
     return receiver.range_folding ? 1.0 / transmitter.pulse_rate_hz : 2.0 * receiver.max_range_m / kSpeedOfLight_mps;
 }
@@ -74,6 +77,7 @@ Sensor read_sensor(const nlohmann::json& document, const std::string& file, cons
     s.gimbal = read_part<GimbalLimits>(top, "gimbal", file);
     if (top.has("derived")) top.object("derived");
     top.reject_unknown_keys();
+    s.rated_frame_rate_hz = s.scan->frame_rate_hz();
     return s;
 }
 
@@ -87,12 +91,15 @@ Sensor read_scenario_sensor(JsonFields& sensor, const std::filesystem::path& bas
     } else {
         document = sensor_preset_document(sensor.choice("preset", sensor_presets(), "paper_ladar"));
     }
+    const double rated_frame_rate_hz = document.at("scan").at("frame_rate_hz").get<double>();
     for (const char* part : kParts) {
         if (!sensor.has(part)) continue;
         const nlohmann::json& changes = sensor.object(part);
         document[part].merge_patch(changes);
     }
-    return read_sensor(document, sensor.file(), "sensor");
+    Sensor s = read_sensor(document, sensor.file(), "sensor");
+    s.rated_frame_rate_hz = rated_frame_rate_hz;
+    return s;
 }
 
 nlohmann::json to_json(const Sensor& s) {
@@ -119,6 +126,7 @@ nlohmann::json to_json(const Sensor& s) {
           {"pulses_per_beam", s.pulses_per_beam()},
           {"unambiguous_range_m", s.transmitter.unambiguous_range_m()},
           {"beams_per_second", s.beams_per_second()},
+          {"rated_beams_per_second", s.rated_beams_per_second()},
           {"pulse_energy_j", s.transmitter.pulse_energy_j()},
           {"average_power_w", s.transmitter.average_power_w()},
           {"range_gate_s", s.range_gate_s()}}},

@@ -28,8 +28,17 @@ struct Sensor {
     Receiver receiver;
     GimbalLimits gimbal;
 
+    /// The frame rate of the unit as its preset or sensor file gives it; a scenario may run it
+    /// slower or faster (scan.frame_rate_hz), which changes beams_per_second() but not this.
+    double rated_frame_rate_hz = 0.0;
+
     double pulses_per_beam() const;
     double beams_per_second() const;  ///< beams per frame * frame rate
+    /// Beams per frame * the rated frame rate: what "real time" means everywhere (render's
+    /// summary, bench): a render at this many beams/s keeps up with the unit firing at its rate.
+    double rated_beams_per_second() const;
+    /// Rendered beams/s over rated_beams_per_second().
+    double realtime_factor(double rendered_beams_per_s) const { return rendered_beams_per_s / rated_beams_per_second(); }
     /// Time a beam's receiver listens for one pulse: one pulse period when ranges fold, else
     /// the time of flight to max_range_m.
     double range_gate_s() const;
