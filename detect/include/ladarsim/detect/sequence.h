@@ -57,4 +57,25 @@ nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detecti
 nlohmann::json to_json(const Detection& d);
 Detection detection_from_json(const nlohmann::json& j);
 
+/// The settings a detection run records ("config" of its report): radius_m, lambda, bias_m,
+/// resolution_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m.
+nlohmann::json to_json(const DetectorConfig& config);
+
+/// A configuration from "method" (rbnn, vrbnn or kalman; default vrbnn) and any of the keys
+/// to_json writes; the others keep DetectorConfig's defaults. Throws InputError(file, key,
+/// problem) for an unknown key or a value of the wrong type or range.
+DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file);
+
+/// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "detections"}
+/// and, when the ground truth holds `target` (default: default_target), "target" and
+/// "supervised" (the run of supervised_run: "iou", "initialised", "failures"), which
+/// evaluate_report scores.
+nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
+                                std::optional<std::uint32_t> target = std::nullopt);
+
+/// The scores of a detection report (as detection_report writes it) as `ladarsim eval` reports
+/// them: evaluate's over VOT's interval of sequence lengths, plus "method". Throws InputError
+/// naming `file` for a report without a supervised run (its dataset had no ground truth).
+nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, const std::string& file);
+
 }  // namespace ladarsim::detect
