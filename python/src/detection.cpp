@@ -22,6 +22,9 @@ namespace {
 /// A Dataset's directory, or a directory given as a path.
 std::filesystem::path dataset_dir(const py::handle& dataset) {
     if (py::isinstance<Dataset>(dataset)) return dataset.cast<const Dataset&>().dir();
+    if (!py::isinstance<py::str>(dataset) && !py::hasattr(dataset, "__fspath__"))
+        throw py::type_error("dataset must be a ladarsim.Dataset or a directory's path, not " +
+                             py::str(py::type::of(dataset).attr("__name__")).cast<std::string>());
     return dataset.cast<std::filesystem::path>();
 }
 

@@ -39,6 +39,9 @@ Scenario scenario_of(const py::handle& scenario, const py::object& base_dir) {
     }
     if (!base_dir.is_none())
         throw InputError(kCaller, "base_dir", "applies to a scenario given as a dict; a file's paths start from its own folder");
+    if (!py::isinstance<py::str>(scenario) && !py::hasattr(scenario, "__fspath__"))
+        throw py::type_error("ladarsim.render: scenario must be a file's path or a dict, not " +
+                             py::str(py::type::of(scenario).attr("__name__")).cast<std::string>());
     const auto file = scenario.cast<std::filesystem::path>();
     py::gil_scoped_release release;
     return sensor_model::load_scenario(file);

@@ -95,6 +95,8 @@ def test_errors_in_files_and_arguments_name_what_is_wrong(tmp_path):
         ladarsim.render(SMALL, frames=0)
     with pytest.raises(ladarsim.InputError, match="base_dir"):
         ladarsim.render(SMALL, base_dir=tmp_path)
+    with pytest.raises(TypeError, match="a file's path or a dict"):
+        ladarsim.render(42)
     with pytest.raises(TypeError, match=r"objects\[0\]\.name"):
         document = small_document()
         document["objects"][0]["name"] = {1, 2}
