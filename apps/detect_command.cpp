@@ -54,9 +54,6 @@ struct DetectCommand {
     int run() {
         detector.method = detect::method_from_string(method_name);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
-        // Checked before any work: a target the ground truth lacks, in the user's terms.
-        const auto target = target_id ? std::optional<std::uint32_t>(target_id) : detect::default_target(sequence);
-        if (target) detect::check_target(sequence, *target, std::filesystem::path(dataset_dir) / "ground_truth.json");
         // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
         // recorded one has none.
         if (!std::filesystem::exists(std::filesystem::path(dataset_dir) / "background.pcd"))
@@ -64,26 +61,13 @@ struct DetectCommand {
                          "return is a candidate", dataset_dir);
         else if (sequence.background.empty())
             spdlog::info("{}: background.pcd has 0 points (nothing static in view): nothing to subtract", dataset_dir);
-        const auto detections = detect::detect_sequence(sequence, detector);
-        nlohmann::json out = {{"method", method_name},
-                              {"config", {{"radius_m", detector.rbnn_radius_m}, {"lambda", detector.lambda.value_or(detect::default_lambda(sequence.sensor))},
-                                          {"bias_m", detector.bias_m}, {"resolution_m", detector.background_resolution_m},
-                                          {"min_neighbours", detector.min_neighbours}, {"max_diagonal_m", detector.max_diagonal_m},
-                                          {"max_speed_mps", detector.max_speed_mps}, {"min_box_m", detector.min_box_m}}},
-                              {"dataset", detect::dataset_record(sequence, dataset_dir)},
-                              {"detections", nlohmann::json::array()}};
+        const nlohmann::json out = detect::detection_report(
+            sequence, detector, target_id ? std::optional<std::uint32_t>(target_id) : std::nullopt);
+        const auto& detections = out["detections"];
         int found = 0, predicted = 0;
         for (const auto& d : detections) {
-            out["detections"].push_back(detect::to_json(d));
-            found += d.found && !d.predicted;
-            predicted += d.predicted;
-        }
-        if (target) {
-            // The supervised run EAO needs is only possible with ground truth; it is stored here so
-            // that `eval` scores exactly what this configuration did.
-            const auto run = detect::supervised_run(sequence, detector, *target);
-            out["target"] = *target;
-            out["supervised"] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
+            found += d["found"].get<bool>() && !d["predicted"].get<bool>();
+            predicted += d["predicted"].get<bool>();
         }
         if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + method_name + ".json")).string();
         write_json(detections_file, out);

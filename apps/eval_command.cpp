@@ -9,9 +9,7 @@
 
 #include "command.h"
 #include "plot_script.h"
-#include "ladarsim/detect/expected_overlap.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/dataset/input_error.h"
 #include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::apps {
@@ -31,32 +29,12 @@ struct EvalCommand {
 
     int run() {
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
-        const nlohmann::json in = read_json(detections_file);
-        detect::check_same_dataset(in, detections_file, sequence, dataset_dir);
-        if (!in.contains("supervised") || !in.contains("target"))
-            throw InputError(detections_file, "supervised", "missing: the dataset had no ground truth when detect ran");
-        std::vector<detect::Detection> detections;
-        for (const auto& j : in.at("detections")) detections.push_back(detect::detection_from_json(j));
-        detect::SupervisedRun run;
-        run.iou = in["supervised"]["iou"].get<std::vector<double>>();
-        run.initialised = in["supervised"]["initialised"].get<std::vector<bool>>();
-        run.failures = in["supervised"]["failures"].get<int>();
-        // Detections of another run of the dataset (re-rendered since, or another --frames) would
-        // be scored frame by frame against the wrong ground truth.
-        if (detections.size() != sequence.frames.size() || run.iou.size() != detections.size() ||
-            run.initialised.size() != detections.size())
-            throw InputError(detections_file, "detections",
-                             "holds " + std::to_string(detections.size()) + " frames, the dataset " + dataset_dir + " has " +
-                                 std::to_string(sequence.frames.size()) +
-                                 ": they were computed on another run of it; run `ladarsim detect " + dataset_dir + "` again");
-        detect::check_target(sequence, in["target"].get<std::uint32_t>(), std::filesystem::path(dataset_dir) / "ground_truth.json");
-        const auto interval = detect::vot_length_interval({static_cast<int>(detections.size())});
-        nlohmann::json scores = detect::evaluate(sequence, detections, run, in["target"].get<std::uint32_t>(), interval);
-        scores["method"] = in.value("method", "");
-        std::printf("%s: %zu frames, mean L2 %.3f m, mean IoU %.3f, EAO %.3f over lengths %d-%d, %d failures, %d frames lost\n",
-                    scores["method"].get<std::string>().c_str(), detections.size(),
+        const nlohmann::json scores = detect::evaluate_report(sequence, read_json(detections_file), detections_file);
+        const auto& interval = scores["eao_interval"];
+        std::printf("%s: %d frames, mean L2 %.3f m, mean IoU %.3f, EAO %.3f over lengths %d-%d, %d failures, %d frames lost\n",
+                    scores["method"].get<std::string>().c_str(), scores["frames"].get<int>(),
                     scores["mean_l2_m"].is_null() ? NAN : scores["mean_l2_m"].get<double>(), scores["mean_iou"].get<double>(),
-                    scores["eao"].get<double>(), interval.first, interval.second, scores["failures"].get<int>(),
+                    scores["eao"].get<double>(), interval[0].get<int>(), interval[1].get<int>(), scores["failures"].get<int>(),
                     scores["frames_lost"].get<int>());
         const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
         if (!json_path.empty()) write_json(json_path, scores);

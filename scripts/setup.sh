@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ladarsim needs, only those missing; quiet and idempotent.
-# Usage: setup.sh [--plots]   (--plots adds matplotlib for the preview and plot scripts)
+# Usage: setup.sh [--plots]   (matplotlib is always installed now: the Python module's tests draw
+# with it; --plots is still accepted)
 set -euo pipefail
 
 packages=(
@@ -8,10 +9,10 @@ packages=(
   libeigen3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libspdlog-dev libtbb-dev
   libopenexr-dev libcli11-dev librandom123-dev libpcl-dev catch2 libopenmpi-dev openmpi-bin
   chromium python3
+  pybind11-dev python3-pybind11 python3-pytest python3-numpy python3-matplotlib
 )
 # npm fetches the viewer's three.js; any Node.js that brings npm will do.
 command -v npm >/dev/null 2>&1 || packages+=(npm)
-[ "${1:-}" = "--plots" ] && packages+=(python3-matplotlib python3-numpy)
 
 missing=()
 for p in "${packages[@]}"; do

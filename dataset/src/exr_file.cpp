@@ -26,7 +26,9 @@ Imf::Slice slice(Imf::PixelType type, std::vector<T>& plane, int columns) {
     return Imf::Slice(type, reinterpret_cast<char*>(plane.data()), sizeof(T), sizeof(T) * static_cast<std::size_t>(columns));
 }
 
-RangeImage first_returns(const Frame& frame) {
+}  // namespace
+
+RangeImage range_image_of(const Frame& frame) {
     if (frame.columns <= 0 || frame.rows <= 0) {
         throw std::invalid_argument("write_frame_exr: frame " + std::to_string(frame.index) + " has a " +
                                     std::to_string(frame.columns) + " x " + std::to_string(frame.rows) + " raster");
@@ -59,27 +61,34 @@ RangeImage first_returns(const Frame& frame) {
     return image;
 }
 
-}  // namespace
+std::vector<RangeImageChannel> range_image_channels(const RangeImage& image) {
+    return {{"Y", &image.range_m, nullptr},
+            {"range_m", &image.range_m, nullptr},
+            {"intensity", &image.intensity, nullptr},
+            {"object_id", nullptr, &image.object_id}};
+}
 
 void write_frame_exr(const std::filesystem::path& path, const Frame& frame) {
-    RangeImage image = first_returns(frame);
+    RangeImage image = range_image_of(frame);
 
     Imf::Header header(image.columns, image.rows);
     header.compression() = Imf::ZIP_COMPRESSION;
     header.lineOrder() = Imf::INCREASING_Y;  // row 0 (the top raster line) is the top of the image
-    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
-    header.channels().insert("range_m", Imf::Channel(Imf::FLOAT));
-    header.channels().insert("intensity", Imf::Channel(Imf::FLOAT));
-    header.channels().insert("object_id", Imf::Channel(Imf::UINT));
     header.insert("frame_index", Imf::IntAttribute(static_cast<int>(image.frame_index)));
     header.insert("start_time_s", Imf::DoubleAttribute(image.start_time_s));
     header.insert("end_time_s", Imf::DoubleAttribute(image.end_time_s));
 
     Imf::FrameBuffer buffer;
-    buffer.insert("Y", slice(Imf::FLOAT, image.range_m, image.columns));
-    buffer.insert("range_m", slice(Imf::FLOAT, image.range_m, image.columns));
-    buffer.insert("intensity", slice(Imf::FLOAT, image.intensity, image.columns));
-    buffer.insert("object_id", slice(Imf::UINT, image.object_id, image.columns));
+    for (const RangeImageChannel& channel : range_image_channels(image)) {
+        // OpenEXR's slices take a mutable base pointer; writing only reads through it.
+        if (channel.float_plane) {
+            header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
+            buffer.insert(channel.name, slice(Imf::FLOAT, const_cast<std::vector<float>&>(*channel.float_plane), image.columns));
+        } else {
+            header.channels().insert(channel.name, Imf::Channel(Imf::UINT));
+            buffer.insert(channel.name, slice(Imf::UINT, const_cast<std::vector<std::uint32_t>&>(*channel.uint_plane), image.columns));
+        }
+    }
 
     AtomicFile out(path);
     {

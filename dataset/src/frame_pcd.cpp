@@ -73,16 +73,20 @@ struct FieldSource {
 
 }  // namespace
 
-void write_frame_pcd(const std::filesystem::path& path, const Frame& frame) {
+PcdCloud frame_pcd_cloud(const std::vector<Return>& returns) {
     std::vector<PcdField> fields;
     for (const auto& f : kReturnFields) fields.push_back({std::string(f.name), f.type, f.size, 1});
-    PcdCloud cloud(std::move(fields), frame.returns.size(), 1);
-    for (std::size_t i = 0; i < frame.returns.size(); ++i) {
+    PcdCloud cloud(std::move(fields), returns.size(), 1);
+    for (std::size_t i = 0; i < returns.size(); ++i) {
         for (std::size_t f = 0; f < kReturnFields.size(); ++f) {
-            cloud.set(i, f, 0, kReturnFields[f].get(frame.returns[i]));
+            cloud.set(i, f, 0, kReturnFields[f].get(returns[i]));
         }
     }
-    write_pcd(path, cloud);
+    return cloud;
+}
+
+void write_frame_pcd(const std::filesystem::path& path, const Frame& frame) {
+    write_pcd(path, frame_pcd_cloud(frame.returns));
 }
 
 std::vector<Return> read_frame_pcd(const std::filesystem::path& path) {

@@ -23,12 +23,6 @@ nlohmann::json box_json(const OrientedBox& box) {
             {"orientation_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
 }
 
-nlohmann::json object_json(const GroundTruthObject& o) {
-    return {{"id", o.object_id},       {"class", o.object_class},   {"name", o.name},
-            {"time_s", o.time_s},      {"returns", o.returns},      {"folded_returns", o.folded_returns},
-            {"box_world", box_json(o.box_world)}, {"box_sensor", box_json(o.box_sensor)}};
-}
-
 std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
 OrientedBox read_box(JsonFields& parent, const std::string& key) {
@@ -83,6 +77,12 @@ FrameGroundTruth read_frame(const nlohmann::json& json, const std::string& file,
 
 }  // namespace
 
+nlohmann::json ground_truth_object_json(const GroundTruthObject& o) {
+    return {{"id", o.object_id},       {"class", o.object_class},   {"name", o.name},
+            {"time_s", o.time_s},      {"returns", o.returns},      {"folded_returns", o.folded_returns},
+            {"box_world", box_json(o.box_world)}, {"box_sensor", box_json(o.box_sensor)}};
+}
+
 FrameGroundTruth ground_truth_of(const Frame& frame) {
     return {frame.index, frame.start_time_s, frame.end_time_s, frame.ground_truth};
 }
@@ -91,7 +91,7 @@ void write_ground_truth_json(const std::filesystem::path& path, const std::vecto
     nlohmann::json frames_json = nlohmann::json::array();
     for (const auto& frame : frames) {
         nlohmann::json objects = nlohmann::json::array();
-        for (const auto& o : frame.objects) objects.push_back(object_json(o));
+        for (const auto& o : frame.objects) objects.push_back(ground_truth_object_json(o));
         frames_json.push_back({{"index", frame.index},
                                {"start_time_s", frame.start_time_s},
                                {"end_time_s", frame.end_time_s},

@@ -6,24 +6,21 @@
 #include <map>
 #include <string>
 
+#include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_fields.h"
 #include "ladarsim/dataset/manifest.h"
 #include "ladarsim/detect/box_metrics.h"
+#include "ladarsim/detect/clustering.h"
 #include "ladarsim/detect/expected_overlap.h"
 
 namespace ladarsim::detect {
 
 Sequence load_sequence(const std::filesystem::path& dir) {
     Sequence s;
-    std::error_code ec;
-    const auto frames_dir = dir / "frames";
-    if (!std::filesystem::is_directory(frames_dir, ec)) throw InputError(dir.string(), "frames", "no frames/ directory");
-    std::vector<std::filesystem::path> files;
-    for (const auto& e : std::filesystem::directory_iterator(frames_dir))
-        if (e.path().extension() == ".pcd") files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    if (files.empty()) throw InputError(frames_dir.string(), "frames", "no .pcd frames");
+    s.directory = dir;
+    const std::vector<std::filesystem::path> files = frame_pcd_files(dir);
     const Manifest manifest = read_manifest(dir / "manifest.json");
     s.sensor = manifest.sensor;
     s.dataset_id = manifest.id;
@@ -188,19 +185,18 @@ nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detecti
             {"per_frame", per_frame}};
 }
 
-nlohmann::json dataset_record(const Sequence& s, const std::filesystem::path& dir) {
-    return {{"directory", std::filesystem::absolute(dir).lexically_normal().string()}, {"manifest_id", s.dataset_id}};
+nlohmann::json dataset_record(const Sequence& s) {
+    return {{"directory", std::filesystem::absolute(s.directory).lexically_normal().string()}, {"manifest_id", s.dataset_id}};
 }
 
-void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s,
-                        const std::filesystem::path& dir) {
+void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s) {
     const auto it = detections.find("dataset");
     if (it == detections.end() || !it->is_object() || !it->contains("manifest_id"))
         throw InputError(detections_file, "dataset", "missing: the file does not say which dataset it was computed on (run detect again)");
     if (it->at("manifest_id") != s.dataset_id) {
         throw InputError(detections_file, "dataset.manifest_id",
                          "these detections are of " + it->value("directory", std::string("another dataset")) + " (manifest " +
-                             it->at("manifest_id").dump() + "), not of " + dir.string() + " (manifest \"" + s.dataset_id + "\")");
+                             it->at("manifest_id").dump() + "), not of " + s.directory.string() + " (manifest \"" + s.dataset_id + "\")");
     }
 }
 
@@ -223,6 +219,80 @@ Detection detection_from_json(const nlohmann::json& j) {
     d.points = j.at("points").get<std::size_t>();
     d.radius_m = j.at("radius_m").get<double>();
     return d;
+}
+
+nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
+    return {{"radius_m", c.rbnn_radius_m}, {"lambda", c.lambda.value_or(default_lambda(sensor))},
+            {"bias_m", c.bias_m},          {"resolution_m", c.background_resolution_m},
+            {"min_neighbours", c.min_neighbours}, {"max_diagonal_m", c.max_diagonal_m},
+            {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m}};
+}
+
+DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file) {
+    constexpr double kLarge = 1e9;
+    JsonFields f(options, file, "");
+    DetectorConfig c;
+    c.method = method_from_string(f.choice("method", {"rbnn", "vrbnn", "kalman"}, to_string(c.method)));
+    c.rbnn_radius_m = f.number("radius_m", 1e-6, kLarge, c.rbnn_radius_m);
+    if (f.has("lambda")) c.lambda = f.number("lambda", 1e-9, kLarge);
+    c.bias_m = f.number("bias_m", 0.0, kLarge, c.bias_m);
+    c.background_resolution_m = f.number("resolution_m", 1e-6, kLarge, c.background_resolution_m);
+    c.min_neighbours = static_cast<int>(f.integer("min_neighbours", 0, 1'000'000, c.min_neighbours));
+    c.max_diagonal_m = f.number("max_diagonal_m", 0.0, kLarge, c.max_diagonal_m);
+    c.max_speed_mps = f.number("max_speed_mps", 0.0, kLarge, c.max_speed_mps);
+    c.min_box_m = f.number("min_box_m", 0.0, kLarge, c.min_box_m);
+    f.reject_unknown_keys();
+    return c;
+}
+
+nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config, std::optional<std::uint32_t> target) {
+    if (!target) target = default_target(s);
+    // Checked before any work: a target the ground truth lacks, in the user's terms.
+    if (target) check_target(s, *target, s.directory / "ground_truth.json");
+    nlohmann::json out = {{"method", to_string(config.method)},
+                          {"config", to_json(config, s.sensor)},
+                          {"dataset", dataset_record(s)},
+                          {"detections", nlohmann::json::array()}};
+    for (const auto& d : detect_sequence(s, config)) out["detections"].push_back(to_json(d));
+    if (target) {
+        // The supervised run EAO needs is only possible with ground truth; it is stored here so
+        // that evaluate_report scores exactly what this configuration did.
+        const SupervisedRun run = supervised_run(s, config, *target);
+        out["target"] = *target;
+        out["supervised"] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
+    }
+    return out;
+}
+
+nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, const std::string& file) {
+    if (!report.is_object()) throw InputError(file, "(file)", "not a report of ladarsim detect");
+    check_same_dataset(report, file, s);
+    if (!report.contains("supervised") || !report.contains("target"))
+        throw InputError(file, "supervised", "missing: the dataset had no ground truth when detect ran");
+    try {
+        std::vector<Detection> detections;
+        for (const auto& j : report.at("detections")) detections.push_back(detection_from_json(j));
+        SupervisedRun run;
+        run.iou = report["supervised"].at("iou").get<std::vector<double>>();
+        run.initialised = report["supervised"].at("initialised").get<std::vector<bool>>();
+        run.failures = report["supervised"].at("failures").get<int>();
+        if (run.iou.size() != detections.size() || run.initialised.size() != detections.size())
+            throw InputError(file, "supervised", "holds " + std::to_string(run.iou.size()) + " frames, the detections " +
+                                                     std::to_string(detections.size()));
+        // Frames gone from the dataset since detect ran would be scored against the wrong ground truth.
+        if (detections.size() != s.frames.size())
+            throw InputError(file, "detections",
+                             "holds " + std::to_string(detections.size()) + " frames, the dataset " + s.directory.string() +
+                                 " has " + std::to_string(s.frames.size()) + ": run `ladarsim detect " + s.directory.string() +
+                                 "` again");
+        check_target(s, report["target"].get<std::uint32_t>(), s.directory / "ground_truth.json");
+        const auto interval = vot_length_interval({static_cast<int>(detections.size())});
+        nlohmann::json scores = evaluate(s, detections, run, report["target"].get<std::uint32_t>(), interval);
+        scores["method"] = report.value("method", "");
+        return scores;
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(file, "detections", std::string("not a report of ladarsim detect: ") + e.what());
+    }
 }
 
 }  // namespace ladarsim::detect

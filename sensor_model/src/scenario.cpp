@@ -45,11 +45,14 @@ RenderSettings read_render(JsonFields& render) {
 
 }  // namespace
 
-Scenario load_scenario(const std::filesystem::path& file) {
+namespace {
+
+/// The scenario of `source` (its `extends` already applied), which goes by the name `file`.
+Scenario read_scenario(nlohmann::json source, const std::filesystem::path& file) {
     const std::string name = file.string();
     Scenario s;
     s.file = file;
-    s.source = read_scenario_document(file);
+    s.source = std::move(source);
 
     JsonFields top(s.source, name, "");
     {
@@ -75,6 +78,15 @@ Scenario load_scenario(const std::filesystem::path& file) {
         if (!found) throw InputError(name, "sensor.cue_object", "no object has id " + std::to_string(s.mount.cue_object_id));
     }
     return s;
+}
+
+}  // namespace
+
+Scenario load_scenario(const std::filesystem::path& file) { return read_scenario(read_scenario_document(file), file); }
+
+Scenario load_scenario(const nlohmann::json& document, const std::filesystem::path& base_dir) {
+    const std::filesystem::path file = base_dir / kInMemoryScenarioName;
+    return read_scenario(extend_scenario_document(document, file), file);
 }
 
 }  // namespace ladarsim::sensor_model

@@ -61,8 +61,11 @@ void apply_objects(json& base_objects, const json& changes, const std::string& n
     }
 }
 
-json read_document(const fs::path& file, std::set<fs::path>& chain) {
-    json doc = read_json(file);
+json read_document(const fs::path& file, std::set<fs::path>& chain);
+
+// `doc` as read from `file` (which names it in errors and whose folder its relative paths start
+// from), with its `extends` chain applied.
+json extend_document(json doc, const fs::path& file, std::set<fs::path>& chain) {
     if (!doc.is_object() || !doc.contains("extends")) return doc;
     const std::string name = file.string();
     if (!doc["extends"].is_string()) throw InputError(name, "extends", "must be the path of a scenario file");
@@ -89,12 +92,19 @@ json read_document(const fs::path& file, std::set<fs::path>& chain) {
     return base;
 }
 
+json read_document(const fs::path& file, std::set<fs::path>& chain) { return extend_document(read_json(file), file, chain); }
+
 }  // namespace
 
 json read_scenario_document(const fs::path& file) {
     std::set<fs::path> chain;
     if (fs::exists(file)) chain.insert(fs::weakly_canonical(file));
     return read_document(file, chain);
+}
+
+json extend_scenario_document(json document, const fs::path& file) {
+    std::set<fs::path> chain;
+    return extend_document(std::move(document), file, chain);
 }
 
 }  // namespace ladarsim::sensor_model

@@ -19,4 +19,8 @@ namespace ladarsim::sensor_model {
 /// for an unreadable base, a cycle, a non-string `extends`, or a removal of an id the base lacks.
 nlohmann::json read_scenario_document(const std::filesystem::path& file);
 
+/// The same for a document already in memory: `file` is the name it goes by, never read: errors
+/// name it, and its folder is where `extends` and relative paths start from.
+nlohmann::json extend_scenario_document(nlohmann::json document, const std::filesystem::path& file);
+
 }  // namespace ladarsim::sensor_model

@@ -118,3 +118,32 @@ TEST_CASE("misused extends is one error naming the file and the field", "[scenar
     write(dir / "y.json", R"({"extends": "x.json"})");
     CHECK_THROWS_WITH(load_scenario(dir / "x.json"), Contains("extends itself"));
 }
+
+TEST_CASE("a scenario held in memory is read as a file of that folder would be, and named <dict>", "[scenario]") {
+    const test::ScratchDir dir;
+    write_base(dir / "a");
+    const nlohmann::json variant = nlohmann::json::parse(R"({
+      "extends": "a/base.json",
+      "objects": [{"id": 4, "class": "bird", "model": "a/models/plate.glb",
+                   "trajectory": {"type": "fixed", "position_m": [300, 0, 30]}}]
+    })");
+    const Scenario s = load_scenario(variant, dir.path());
+    CHECK(s.file == dir / "<dict>");
+    CHECK(s.render.frames == 7);
+    REQUIRE(s.scene.objects.size() == 4);
+    CHECK(object(s, 2).model->mesh.triangles.size() == 2);  // the base's path, relative to the base
+    CHECK(object(s, 4).model->mesh.triangles.size() == 2);  // the document's own, relative to base_dir
+    CHECK_FALSE(s.source.contains("extends"));
+
+    auto error_of = [&](const std::string& text) -> std::string {
+        try {
+            load_scenario(nlohmann::json::parse(text), dir.path());
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    CHECK(error_of(R"({"extends": "a/base.json", "render": {"frame": 3}})") ==
+          (dir / "<dict>").string() + ": render.frame: unknown key");
+    CHECK_THAT(error_of(R"({"extends": "none.json"})"), Contains("<dict>: extends: no such file"));
+}

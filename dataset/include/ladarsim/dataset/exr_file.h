@@ -29,6 +29,21 @@ struct RangeImage {
     }
 };
 
+/// The image write_frame_exr writes of a frame: the first return (return_index 0) of each beam.
+/// Throws std::invalid_argument if the frame has no raster or a return lies outside it.
+RangeImage range_image_of(const Frame& frame);
+
+/// One channel of the EXR: its name, and its plane of a RangeImage (FLOAT or UINT).
+struct RangeImageChannel {
+    const char* name;
+    const std::vector<float>* float_plane = nullptr;
+    const std::vector<std::uint32_t>* uint_plane = nullptr;
+};
+
+/// The channels write_frame_exr writes, in its order: Y (the range again, for ordinary viewers),
+/// range_m, intensity, object_id.
+std::vector<RangeImageChannel> range_image_channels(const RangeImage& image);
+
 /// Writes a columns x rows EXR (ZIP) from the first return (return_index 0) of each beam:
 /// FLOAT `range_m` and `intensity`, UINT `object_id`, and FLOAT `Y` = range_m so that ordinary
 /// viewers show a greyscale range image. No-return pixels are 0 rather than NaN, which many

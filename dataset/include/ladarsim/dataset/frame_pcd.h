@@ -4,8 +4,12 @@
 #include <vector>
 
 #include "ladarsim/dataset/frame.h"
+#include "ladarsim/dataset/pcd_file.h"
 
 namespace ladarsim {
+
+/// The returns as the cloud write_frame_pcd writes: one point per return, the fields below.
+PcdCloud frame_pcd_cloud(const std::vector<Return>& returns);
 
 /// Writes the frame's returns as a binary PCD, one point per return, packed (55 bytes a point):
 ///   x y z intensity (F4), range_m time_s (F8), beam_az beam_el (F4, rad), column row (U2),

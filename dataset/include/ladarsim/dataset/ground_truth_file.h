@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "ladarsim/dataset/frame.h"
 
 namespace ladarsim {
@@ -23,6 +25,10 @@ struct FrameGroundTruth {
 };
 
 FrameGroundTruth ground_truth_of(const Frame& frame);
+
+/// One object of a frame as ground_truth.json holds it: {"id", "class", "name", "time_s",
+/// "returns", "folded_returns", "box_world", "box_sensor"}.
+nlohmann::json ground_truth_object_json(const GroundTruthObject& object);
 
 /// Atomic (see AtomicFile).
 void write_ground_truth_json(const std::filesystem::path& path, const std::vector<FrameGroundTruth>& frames);

@@ -14,7 +14,8 @@
 namespace ladarsim::detect {
 
 struct Sequence {
-    std::string dataset_id;  ///< Manifest::id: which dataset these frames are
+    std::filesystem::path directory;  ///< where load_sequence read it
+    std::string dataset_id;           ///< Manifest::id: which dataset these frames are
     SensorGeometry sensor;   ///< from manifest.json
     std::vector<std::uint64_t> frame_index;
     std::vector<double> time_s;
@@ -63,14 +64,35 @@ nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detecti
                         std::uint32_t target, std::pair<int, int> interval);
 
 /// What a detections file records of the dataset it was computed on: its directory and manifest id.
-nlohmann::json dataset_record(const Sequence& s, const std::filesystem::path& dir);
+nlohmann::json dataset_record(const Sequence& s);
 /// Throws InputError(detections_file, "dataset", ...) naming both datasets when `detections` (a
 /// detections file's JSON) were computed on another dataset than `s` (read from `dir`), or do not
 /// say which.
-void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s,
-                        const std::filesystem::path& dir);
+void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s);
 
 nlohmann::json to_json(const Detection& d);
 Detection detection_from_json(const nlohmann::json& j);
+
+/// The settings a detection run records ("config" of its report): radius_m, lambda, bias_m,
+/// resolution_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m.
+/// `config` as a detection report records it, its lambda resolved for `sensor` (default_lambda).
+nlohmann::json to_json(const DetectorConfig& config, const SensorGeometry& sensor);
+
+/// A configuration from "method" (rbnn, vrbnn or kalman; default vrbnn) and any of the keys
+/// to_json writes; the others keep DetectorConfig's defaults. Throws InputError(file, key,
+/// problem) for an unknown key or a value of the wrong type or range.
+DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file);
+
+/// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "detections"}
+/// and, when the ground truth holds `target` (default: default_target), "target" and
+/// "supervised" (the run of supervised_run: "iou", "initialised", "failures"), which
+/// evaluate_report scores.
+nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
+                                std::optional<std::uint32_t> target = std::nullopt);
+
+/// The scores of a detection report (as detection_report writes it) as `ladarsim eval` reports
+/// them: evaluate's over VOT's interval of sequence lengths, plus "method". Throws InputError
+/// naming `file` for a report without a supervised run (its dataset had no ground truth).
+nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, const std::string& file);
 
 }  // namespace ladarsim::detect

@@ -1,0 +1,96 @@
+// ladarsim.detect and ladarsim.evaluate: Algorithm 1 over a dataset and its scores, the reports
+// `ladarsim detect` and `ladarsim eval --json` write.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.h"
+#include "datasets.h"
+#include "json_objects.h"
+#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/detect/sequence.h"
+
+namespace ladarsim::python {
+
+namespace {
+
+/// A Dataset's directory, or a directory given as a path.
+std::filesystem::path dataset_dir(const py::handle& dataset) {
+    if (py::isinstance<Dataset>(dataset)) return dataset.cast<const Dataset&>().dir();
+    if (!py::isinstance<py::str>(dataset) && !py::hasattr(dataset, "__fspath__"))
+        throw py::type_error("dataset must be a ladarsim.Dataset or a directory's path, not " +
+                             py::str(py::type::of(dataset).attr("__name__")).cast<std::string>());
+    return dataset.cast<std::filesystem::path>();
+}
+
+detect::Sequence sequence_of(const py::handle& dataset) {
+    const std::filesystem::path dir = dataset_dir(dataset);
+    py::gil_scoped_release release;
+    return detect::load_sequence(dir);
+}
+
+py::object detect_dataset(const py::handle& dataset, const std::string& method, const py::kwargs& options) {
+    constexpr const char* kCaller = "ladarsim.detect()";
+    nlohmann::json config = {{"method", method}};
+    std::optional<std::uint32_t> target;
+    for (const auto& [key, value] : options) {
+        std::string name = key.cast<std::string>();
+        if (name == "target") {
+            if (!value.is_none()) target = value.cast<std::uint32_t>();
+            continue;
+        }
+        if (name == "lambda_") name = "lambda";  // `lambda` is a Python keyword
+        config[name] = from_python(value, name);
+    }
+    const detect::DetectorConfig detector = detect::read_detector_config(config, kCaller);
+    const detect::Sequence sequence = sequence_of(dataset);
+    if (sequence.background.empty())
+        PyErr_WarnEx(PyExc_UserWarning, (dataset_dir(dataset).string() + ": no background.pcd: nothing is subtracted").c_str(), 1);
+    nlohmann::json report;
+    {
+        py::gil_scoped_release release;
+        report = detect::detection_report(sequence, detector, target);
+    }
+    return to_python(report);
+}
+
+py::object evaluate_detections(const py::handle& dataset, const py::handle& detections) {
+    nlohmann::json report;
+    std::string file = "<dict>";
+    if (py::isinstance<py::dict>(detections)) {
+        report = from_python(detections);
+    } else {
+        const auto path = detections.cast<std::filesystem::path>();
+        file = path.string();
+        report = read_json(path);
+    }
+    const detect::Sequence sequence = sequence_of(dataset);
+    nlohmann::json scores;
+    {
+        py::gil_scoped_release release;
+        scores = detect::evaluate_report(sequence, report, file);
+    }
+    return to_python(scores);
+}
+
+}  // namespace
+
+void bind_detection(py::module_& m) {
+    m.def("detect", &detect_dataset, py::arg("dataset"), py::arg("method") = "vrbnn",
+          R"(Run Algorithm 1 (docs/detection.md) over a dataset (a Dataset or its directory) and return
+the report `ladarsim detect` writes: {"method", "config", "detections", and with ground truth
+"target", "supervised"}. method: "rbnn", "vrbnn" or "kalman"; options: radius_m, lambda (or
+lambda_), bias_m, resolution_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m, and
+target (the ground-truth id to score; default the first drone). Unknown options raise InputError.)");
+    m.def("evaluate", &evaluate_detections, py::arg("dataset"), py::arg("detections"),
+          R"(Score a detection report (the dict detect() returns, or the path of a file `ladarsim detect`
+wrote) against the dataset's ground truth: the dict `ladarsim eval --json` writes (mean_l2_m,
+mean_iou, eao, failures, frames_lost, success, precision, per_frame, ...).)");
+}
+
+}  // namespace ladarsim::python

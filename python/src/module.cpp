@@ -1,0 +1,49 @@
+// The `ladarsim` Python module: render scenarios frame by frame into NumPy arrays or into
+// datasets, read any dataset, run and score detection, as the command line does.
+#include <string>
+
+#include "bindings.h"
+#include "ladarsim/dataset/dataset_directory.h"
+#include "ladarsim/dataset/input_error.h"
+
+namespace ladarsim::python {
+
+void bind_errors(py::module_& m) {
+    // Kept for the life of the process: the translator may run until the interpreter exits.
+    static PyObject* const input_error =
+        py::exception<InputError>(m, "InputError", PyExc_ValueError).inc_ref().ptr();
+    py::setattr(input_error, "__doc__", py::str(R"(Bad input: a file (or "<dict>"), the field in it and the problem, in
+the one-line message the command line prints; also as the attributes file, field and problem.)"));
+    py::register_exception_translator([](std::exception_ptr thrown) {
+        try {
+            if (thrown) std::rethrow_exception(thrown);
+        } catch (const InputError& e) {
+            py::object error = py::reinterpret_borrow<py::object>(input_error)(e.what());
+            error.attr("file") = e.file();
+            error.attr("field") = e.field();
+            error.attr("problem") = e.problem();
+            PyErr_SetObject(input_error, error.ptr());
+        }
+    });
+}
+
+}  // namespace ladarsim::python
+
+PYBIND11_MODULE(ladarsim, m) {
+    using namespace ladarsim::python;
+    m.doc() = R"(ladarsim: a physically based LADAR simulator (README.md, docs/).
+
+render(scenario, ...)      frames one at a time, or a dataset directory with out=DIR
+Dataset(dir)               a rendered or recorded dataset, read lazily
+detect(dataset, ...)       Algorithm 1 over a dataset, as `ladarsim detect` reports it
+evaluate(dataset, report)  its scores, as `ladarsim eval --json` writes them
+Sensor.preset(name)        a sensor, its document and derived quantities
+InputError                 bad input (a ValueError), naming the file, field and problem)";
+    m.attr("__version__") = ladarsim::software_json().at("version").get<std::string>();
+    bind_errors(m);
+    bind_frames(m);
+    bind_sensors(m);
+    bind_render(m);
+    bind_datasets(m);
+    bind_detection(m);
+}

@@ -1,0 +1,41 @@
+"""ladarsim.detect and ladarsim.evaluate: the same reports as `ladarsim detect` and
+`ladarsim eval --json`."""
+import pytest
+
+import ladarsim
+from conftest import read_json, run_cli
+
+
+@pytest.fixture(scope="module")
+def cli_reports(cli_small, tmp_path_factory):
+    out = tmp_path_factory.mktemp("detect")
+    run_cli("detect", cli_small, "--method", "vrbnn", "--lambda", 180, "--min-box", 0.3, "--out", out / "detections.json")
+    run_cli("eval", cli_small, "--detections", out / "detections.json", "--json", out / "scores.json")
+    return read_json(out / "detections.json"), read_json(out / "scores.json"), out / "detections.json"
+
+
+def test_detect_reports_what_the_command_line_reports(cli_small, cli_reports):
+    detections, _, _ = cli_reports
+    report = ladarsim.detect(ladarsim.Dataset(cli_small), method="vrbnn", lambda_=180, min_box_m=0.3)
+    assert report == detections
+    assert report["target"] == 2 and len(report["detections"]) == 3
+    assert ladarsim.detect(str(cli_small), **{"lambda": 180, "min_box_m": 0.3}) == detections
+
+
+def test_evaluate_scores_as_the_command_line_does(cli_small, cli_reports):
+    detections, scores, detections_file = cli_reports
+    assert ladarsim.evaluate(cli_small, detections) == scores
+    assert ladarsim.evaluate(ladarsim.Dataset(cli_small), detections_file) == scores
+    assert scores["frames"] == 3 and "eao" in scores
+
+
+def test_unknown_or_mistyped_options_are_input_errors(cli_small):
+    with pytest.raises(ladarsim.InputError, match=r"radius: unknown key"):
+        ladarsim.detect(cli_small, radius=0.3)
+    with pytest.raises(ladarsim.InputError, match=r"method"):
+        ladarsim.detect(cli_small, method="dbscan")
+    with pytest.raises(ladarsim.InputError, match=r"dataset: missing"):
+        ladarsim.evaluate(cli_small, {"detections": []})
+    report = ladarsim.detect(cli_small)
+    with pytest.raises(ladarsim.InputError, match=r"supervised"):
+        ladarsim.evaluate(cli_small, {"dataset": report["dataset"], "detections": []})
