@@ -20,8 +20,8 @@ struct BenchOptions {
 
 /// Runs every benchmark and returns their figures. Top-level keys: pipeline_vs_raw_embree,
 /// realtime_factor, count_error_pct, and the details under pipeline, realtime, accuracy,
-/// recorded_map, scaling. Real time is the scenario's sensor firing at its rated beam rate
-/// (Sensor::rated_beams_per_second, as render's summary says it; the default scenario's
+/// recorded_map, scaling, hard_cases. Real time is the scenario's sensor firing at its rated beam
+/// rate (Sensor::rated_beams_per_second, as render's summary says it; the default scenario's
 /// 150 x 20 beams at 20 frames/s: 60,000 beams/s).
 nlohmann::json run_benchmarks(const BenchOptions& options);
 
