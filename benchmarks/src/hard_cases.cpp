@@ -31,8 +31,8 @@ struct HardCase {
     Scenario scenario;
     std::vector<std::uint64_t> frames;
     std::uint32_t object_id = kAllObjects;
-    std::function<double(const sensor_model::Return&)> full_echo_pe;  ///< empty when not an extended target
-    std::function<bool(const sensor_model::Return&)> judged;          ///< empty: every beam is judged
+    std::function<double(const Return&)> full_echo_pe;  ///< empty when not an extended target
+    std::function<bool(const Return&)> judged;          ///< empty: every beam is judged
     /// The same scene at an easier pointing, timed for comparison (the horizon against -2 deg).
     std::optional<Scenario> easier;
 };
@@ -65,7 +65,7 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
     auto tally = [&](const Rendering& x) {
         std::map<std::uint64_t, Beam> beams;
         for (std::size_t f = 0; f < x.frames.size(); ++f) {
-            for (const sensor_model::Return& ret : x.frames[f].returns) {
+            for (const Return& ret : x.frames[f].returns) {
                 if (c.object_id != kAllObjects && ret.object_id != c.object_id) continue;
                 if (c.judged && !c.judged(ret)) continue;
                 Beam& b = beams[(std::uint64_t(f) << 32) | (std::uint64_t{ret.row} << 16) | ret.column];
@@ -155,7 +155,7 @@ HardCase straight_edge(const std::string& orientation, double distance_m) {
     c.scenario.scene.objects.push_back(plate);
     const sensor_model::Sensor sensor = c.scenario.sensor;
     // The plate filling the footprint at the beam's range: the extended-target closed form.
-    c.full_echo_pe = [sensor, distance_m](const sensor_model::Return& r) {
+    c.full_echo_pe = [sensor, distance_m](const Return& r) {
         const double cos_axis = std::cos(r.beam_az_rad) * std::cos(r.beam_el_rad);
         const double range = distance_m / cos_axis;
         const double energy = sensor_model::lambertian_echo_energy_j(
@@ -239,7 +239,7 @@ HardCase drone_at_footprint_edge(const Scenario& base) {
         }
     }
     const double r_max = c.scenario.render.footprint_truncation * 0.5 * c.scenario.sensor.transmitter.divergence_mrad * 1e-3;
-    c.judged = [r_max, boresight](const sensor_model::Return& r) {
+    c.judged = [r_max, boresight](const Return& r) {
         const Eigen::Vector3d axis(std::cos(r.beam_el_rad) * std::cos(r.beam_az_rad), std::cos(r.beam_el_rad) * std::sin(r.beam_az_rad),
                                    std::sin(r.beam_el_rad));
         return std::acos(std::min(1.0, axis.dot(boresight))) > 0.5 * r_max;
