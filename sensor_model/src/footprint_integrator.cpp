@@ -165,7 +165,8 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     thread_local std::vector<raytrace::ObjectBounds> objects;
     const double r_max = footprint_.max_offset_rad();
     traced_.object_bounds_near(aim.world_from_beam.col(0), std::max(1.0, ellipticity_) * r_max,
-                               1.0 + 1.01 * std::max(ellipticity_, 1.0 / ellipticity_), aim.time_s, objects);
+                               1.0 + 1.01 * std::max(ellipticity_, 1.0 / ellipticity_), aim.time_s, small_object_rad_,
+                               objects);
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     bool media = false;
