@@ -54,6 +54,11 @@ struct BenchCommand {
                             m["map_energy_error_pct"].get<double>());
             }
         }
+        for (const nlohmann::json& p : result["peer"]["settings"]) {
+            std::printf("plane and sphere, %s: %.0f pulses/s, %.1f rays and %.2f returns per pulse\n",
+                        p["footprint_samples"] == 0 ? "adaptive" : "19 sub-rays", p["pulses_per_s"].get<double>(),
+                        p["rays_per_pulse"].get<double>(), p["returns_per_pulse"].get<double>());
+        }
         if (!bench_json.empty()) {
             write_json(bench_json, result);
             std::printf("wrote %s\n", bench_json.c_str());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <ctime>
 #include <unistd.h>
 
 #include "ladarsim/sensor_model/frame_renderer.h"
@@ -67,6 +68,12 @@ sensor_model::Scenario with_footprint(sensor_model::Scenario s, int samples, dou
     s.render.footprint_samples = samples;
     s.render.footprint_tolerance = tolerance;
     return s;
+}
+
+double thread_cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 std::uint64_t resident_bytes() {

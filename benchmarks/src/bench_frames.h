@@ -16,6 +16,9 @@ inline double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// CPU time of the calling thread (s): work done, whatever else the machine runs.
+double thread_cpu_seconds();
+
 struct Rendering {
     std::vector<Frame> frames;
     double seconds = 0.0;

@@ -71,6 +71,8 @@ struct TracedScene::Impl {
         Eigen::Vector3d window_direction = Eigen::Vector3d::UnitX();
         double window_angular_radius_rad = 0.0;
         bool window_holds_origin = false;
+        // A static mesh's own sphere (not the window's) as seen from origin_world.
+        double static_angular_radius_rad = 0.0;
     };
     std::vector<BoundsTrack> bounds;
     double window_begin_s = 0.0;
@@ -305,6 +307,9 @@ struct TracedScene::Impl {
         track.window_holds_origin = distance <= radius;
         track.window_direction = track.window_holds_origin ? Eigen::Vector3d::UnitX() : Eigen::Vector3d(to_centre / distance);
         track.window_angular_radius_rad = track.window_holds_origin ? std::numbers::pi : std::asin(radius / distance);
+        const double own_distance = (track.bounds.centre_world - origin_world).norm();
+        track.static_angular_radius_rad = own_distance <= track.bounds.radius_m ? std::numbers::pi / 2.0
+                                                                                : std::asin(track.bounds.radius_m / own_distance);
     }
 
     // A track's bounds at Embree's time `u` (0 to 1 over the window), appended to `out`.
@@ -403,7 +408,7 @@ void TracedScene::object_bounds(double time_s, std::vector<ObjectBounds>& out) c
 }
 
 void TracedScene::object_bounds_near(const Eigen::Vector3d& axis_world, double half_angle_rad, double radius_factor,
-                                     double time_s, std::vector<ObjectBounds>& out) const {
+                                     double time_s, double static_wider_rad, std::vector<ObjectBounds>& out) const {
     out.clear();
     // cos(half angle + factor x angular radius) of each object, per thread, for this window and cone.
     thread_local struct {
@@ -425,7 +430,9 @@ void TracedScene::object_bounds_near(const Eigen::Vector3d& axis_world, double h
     const double u = impl_->embree_time(time_s);
     for (std::size_t k = 0; k < impl_->bounds.size(); ++k) {
         // Less a hair for the rounding of the dot product near the limit.
-        if (axis_world.dot(impl_->bounds[k].window_direction) < limits.cos_limit[k] - 1e-12) continue;
+        const Impl::BoundsTrack& track = impl_->bounds[k];
+        if (!track.bounds.moving && !track.bounds.volume && track.static_angular_radius_rad >= static_wider_rad) continue;
+        if (axis_world.dot(track.window_direction) < limits.cos_limit[k] - 1e-12) continue;
         impl_->push_bounds(k, u, out);
     }
 }

@@ -191,6 +191,14 @@ Model make_plate(double side_m, double reflectance) {
     return b.take();
 }
 
+Model make_sphere(double diameter_m, double reflectance) {
+    ModelBuilder b("procedural:sphere");
+    const std::uint32_t m = b.material("sphere", reflectance);
+    const double r = 0.5 * diameter_m;
+    b.ellipsoid(Eigen::Vector3d::Zero(), {r, r, r}, 32, m);
+    return b.take();
+}
+
 Model make_box_building(double length_m, double width_m, double height_m) {
     ModelBuilder b("procedural:building");
     const std::uint32_t concrete = b.material("concrete", 0.35);

@@ -58,7 +58,16 @@ std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, doubl
 }
 
 void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces) {
-    std::sort(echoes.begin(), echoes.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
+    // Sorted by range through (range, index) pairs, then moved once: std::sort's steps depend on
+    // its comparisons alone, so the order is the one sorting the echoes themselves gives.
+    thread_local std::vector<std::pair<double, std::uint32_t>> order;
+    thread_local std::vector<SurfaceEcho> sorted;
+    order.clear();
+    for (std::size_t i = 0; i < echoes.size(); ++i) order.emplace_back(echoes[i].range_m, static_cast<std::uint32_t>(i));
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    sorted.clear();
+    for (const auto& [range, i] : order) sorted.push_back(echoes[i]);
+    echoes.swap(sorted);
     std::size_t count = 0;
     for (std::size_t first = 0; first < echoes.size();) {
         std::size_t last = first + 1;
@@ -165,7 +174,8 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     thread_local std::vector<raytrace::ObjectBounds> objects;
     const double r_max = footprint_.max_offset_rad();
     traced_.object_bounds_near(aim.world_from_beam.col(0), std::max(1.0, ellipticity_) * r_max,
-                               1.0 + 1.01 * std::max(ellipticity_, 1.0 / ellipticity_), aim.time_s, objects);
+                               1.0 + 1.01 * std::max(ellipticity_, 1.0 / ellipticity_), aim.time_s, small_object_rad_,
+                               objects);
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     bool media = false;

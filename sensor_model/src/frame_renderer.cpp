@@ -36,7 +36,16 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
       traced_(scenario.scene, scenario.mount.position_world),
       raster_(*scenario.sensor.scan),
       receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise),
-      integrator_(scenario, traced_, receiver_) {
+      integrator_(scenario, traced_, receiver_),
+      world_from_sensor_rotation_(scenario.mount.world_from_sensor().linear()) {
+    using Eigen::AngleAxisd;
+    for (int row = 0; row < raster_.rows(); ++row) {
+        for (int step = 0; step < raster_.columns(); ++step) {
+            const RasterBeam beam = raster_.beam(row, step);
+            offset_rotations_.push_back({Eigen::Quaterniond(AngleAxisd(beam.az_offset_rad, Eigen::Vector3d::UnitZ())),
+                                         Eigen::Quaterniond(AngleAxisd(-beam.el_offset_rad, Eigen::Vector3d::UnitY()))});
+        }
+    }
     if (integrator_.adaptive()) find_neighbours();
 }
 
@@ -114,19 +123,22 @@ GimbalPointing FrameRenderer::gimbal_pointing(std::uint64_t index) {
     return pointing_by_frame_[index];
 }
 
-BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const {
+BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, double frame_start_s) const {
     BeamAim a;
-    a.world_from_beam = scenario_.mount.world_from_sensor().linear() *
-                        sensor_from_beam(pointing, beam.az_offset_rad, beam.el_offset_rad);
+    // sensor_from_beam(pointing, az offset, el offset), composed in the same order.
+    const auto& offset = offset_rotations_[static_cast<std::size_t>(beam.row * raster_.columns() + step)];
+    a.world_from_beam = world_from_sensor_rotation_ * ((gimbal * offset[0]) * offset[1]).toRotationMatrix();
     a.time_s = frame_start_s + beam.time_offset_s;
     a.cell = static_cast<std::uint32_t>(beam.row * raster_.columns() + step);  // keys the beam's random draws
     return a;
 }
 
 std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double frame_start_s) {
+    const Eigen::Quaterniond gimbal = Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) *
+                                      Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
     for (int step = 0; step < raster_.columns(); ++step) {
         const RasterBeam beam = raster_.beam(row, step);
-        aims_[static_cast<std::size_t>(row * raster_.columns() + beam.column)] = aim(beam, step, pointing, frame_start_s);
+        aims_[static_cast<std::size_t>(row * raster_.columns() + beam.column)] = aim(beam, step, gimbal, frame_start_s);
     }
     if (!integrator_.adaptive()) return 0;
 

@@ -83,26 +83,58 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     // Per-thread scratch: a beam's windows are a few hundred bins.
     thread_local std::vector<double> power, n, y, contribution;
     power.assign(bins, 0.0);
-    for (const Echo& e : echoes) {
-        const double te = e.range_m * to_time;
-        const PulseShape shape = shape_of(e);
-        // Only bins within the kept tails of this echo.
-        const double lo = (te - kWindowSigmas * shape.sigma_s - t0_s) / bin_s_;
-        const double hi = (te + kWindowSigmas * shape.sigma_s - t0_s) / bin_s_;
-        const auto k0 = static_cast<std::size_t>(std::max(0.0, std::floor(lo)));
-        const auto k1 = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, std::ceil(hi))));
-        // The Gaussian across evenly spaced bins by its recurrence: with t_k = t0 + k b - te,
-        // g(t_{k+1}) = g(t_k) r_k and r_{k+1} = r_k exp(-b^2 / sigma^2): three exponentials per
-        // echo instead of one per bin (a beam can carry hundreds of sub-ray echoes).
-        const double t = t0_s + static_cast<double>(k0) * bin_s_ - te;
-        const double inv_var = 1.0 / (shape.sigma_s * shape.sigma_s);
-        double g = e.energy_j * shape.at(t);
-        double r = std::exp(-(2.0 * t * bin_s_ + bin_s_ * bin_s_) * 0.5 * inv_var);
-        const double q = std::exp(-bin_s_ * bin_s_ * inv_var);
-        for (std::size_t k = k0; k <= k1; ++k) {
-            power[k] += g;
+    // Each echo's pulse shape, found once for the sum and the attribution of peaks below.
+    thread_local std::vector<PulseShape> shapes;
+    shapes.clear();
+    for (const Echo& e : echoes) shapes.push_back(shape_of(e));
+    // The Gaussian across evenly spaced bins by its recurrence: with t_k = t0 + k b - te,
+    // g(t_{k+1}) = g(t_k) r_k and r_{k+1} = r_k exp(-b^2 / sigma^2): three exponentials per
+    // echo instead of one per bin (a beam can carry hundreds of sub-ray echoes).
+    struct Recurrence {
+        std::size_t k0, k1;  // only bins within the kept tails of the echo
+        double g, r, q;
+        void step() {
             g *= r;
             r *= q;
+        }
+    };
+    auto recurrence = [&](std::size_t i) {
+        const Echo& e = echoes[i];
+        const PulseShape& shape = shapes[i];
+        const double te = e.range_m * to_time;
+        const double lo = (te - kWindowSigmas * shape.sigma_s - t0_s) / bin_s_;
+        const double hi = (te + kWindowSigmas * shape.sigma_s - t0_s) / bin_s_;
+        Recurrence c;
+        c.k0 = static_cast<std::size_t>(std::max(0.0, std::floor(lo)));
+        c.k1 = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, std::ceil(hi))));
+        const double t = t0_s + static_cast<double>(c.k0) * bin_s_ - te;
+        const double inv_var = 1.0 / (shape.sigma_s * shape.sigma_s);
+        c.g = e.energy_j * shape.at(t);
+        c.r = std::exp(-(2.0 * t * bin_s_ + bin_s_ * bin_s_) * 0.5 * inv_var);
+        c.q = std::exp(-bin_s_ * bin_s_ * inv_var);
+        return c;
+    };
+    // Two echoes at a time: their recurrences are independent chains of multiplications, and each
+    // bin still adds the first echo's term before the second's (the sum is the same to the bit).
+    std::size_t i = 0;
+    for (; i + 1 < echoes.size(); i += 2) {
+        Recurrence a = recurrence(i), b = recurrence(i + 1);
+        for (std::size_t k = std::min(a.k0, b.k0); k <= std::max(a.k1, b.k1); ++k) {
+            if (k >= a.k0 && k <= a.k1) {
+                power[k] += a.g;
+                a.step();
+            }
+            if (k >= b.k0 && k <= b.k1) {
+                power[k] += b.g;
+                b.step();
+            }
+        }
+    }
+    if (i < echoes.size()) {
+        Recurrence a = recurrence(i);
+        for (std::size_t k = a.k0; k <= a.k1; ++k) {
+            power[k] += a.g;
+            a.step();
         }
     }
     n.assign(bins, 0.0);
@@ -152,7 +184,8 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
         const double t_peak = t0_s + (static_cast<double>(peak) + offset) * bin_s_;
         // Which surface made it: the largest noise-free contribution at the peak.
         std::fill(contribution.begin(), contribution.end(), 0.0);
-        for (const Echo& e : echoes) contribution[e.surface] += e.energy_j * shape_of(e).at(t_peak - e.range_m * to_time);
+        for (std::size_t j = 0; j < echoes.size(); ++j)
+            contribution[echoes[j].surface] += echoes[j].energy_j * shapes[j].at(t_peak - echoes[j].range_m * to_time);
         std::uint32_t surface = kNoSurface;
         double best = 0.0;
         for (std::uint32_t i = 0; i < surfaces; ++i) {

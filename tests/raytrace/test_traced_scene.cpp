@@ -338,7 +338,7 @@ TEST_CASE("object_bounds_near: every object a cone can meet, against testing eac
         const double half_angle = beam % 2 ? 1e-3 : 0.05, factor = 2.01;
         const double time = 2.0 + 0.5 * (u(rng) + 1.0) / 2.0;
         traced.object_bounds(time, all);
-        traced.object_bounds_near(axis, half_angle, factor, time, near);
+        traced.object_bounds_near(axis, half_angle, factor, time, 10.0, near);
         // What near returns are exactly object_bounds' entries, in order.
         std::size_t j = 0;
         for (const raytrace::ObjectBounds& b : all) {
@@ -360,6 +360,9 @@ TEST_CASE("object_bounds_near: every object a cone can meet, against testing eac
             ++j;
         }
         CHECK(j == near.size());
+        // Static meshes wider than a given angle are left out: here every static one.
+        traced.object_bounds_near(axis, half_angle, factor, time, 0.0, near);
+        for (const raytrace::ObjectBounds& b : near) CHECK(b.moving);
     }
     CHECK(met > 100);          // the cones met objects often enough to test something
     CHECK(culled > 4000 * 30);  // and most objects, most of the time, were never placed

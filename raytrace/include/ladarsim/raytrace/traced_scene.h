@@ -65,9 +65,11 @@ public:
     /// angular radius beta scaled by `radius_factor`, comes within `half_angle_rad` of `axis_world`
     /// (a unit vector): angle(axis, centre) <= half_angle_rad + radius_factor * beta. Each object's
     /// window sphere is found once per time window, so that a beam tests one dot product per
-    /// object instead of placing and testing every object. Fills `out` in the scene's object order.
+    /// object instead of placing and testing every object. Static meshes whose sphere subtends
+    /// `static_wider_rad` or more from origin_world (asin(radius / distance); pi / 2 when it
+    /// holds the origin) are left out too. Fills `out` in the scene's object order.
     void object_bounds_near(const Eigen::Vector3d& axis_world, double half_angle_rad, double radius_factor, double time_s,
-                            std::vector<ObjectBounds>& out) const;
+                            double static_wider_rad, std::vector<ObjectBounds>& out) const;
 
     const Eigen::Vector3d& origin_world() const;
 

@@ -22,6 +22,10 @@ Model make_terrain();
 /// the paper's abstraction of a target.
 Model make_plate(double side_m, double reflectance);
 
+/// A sphere of the given diameter centred on the origin (a UV sphere of 32 segments), one
+/// material of the given reflectance.
+Model make_sphere(double diameter_m, double reflectance);
+
 /// A closed box, base on z = 0 and centred on the origin in x and y; concrete, 0.35.
 Model make_box_building(double length_m, double width_m, double height_m);
 

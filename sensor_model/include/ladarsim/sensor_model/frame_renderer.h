@@ -50,7 +50,8 @@ private:
         double x_rad, y_rad;
         double irradiance;
     };
-    BeamAim aim(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const;
+    /// `gimbal`: the pointing's rotation, AngleAxis(az, z) * AngleAxis(-el, y).
+    BeamAim aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, double frame_start_s) const;
     void find_neighbours();
     /// Pass 1: where and when the beams of one raster line fire and, for adaptive footprints,
     /// their axes and extra probes traced. Returns the rays traced.
@@ -67,6 +68,11 @@ private:
     FootprintIntegrator integrator_;
     std::vector<GimbalPointing> pointing_by_frame_;
     std::vector<Neighbour> neighbours_;
+    /// By (row, step): each beam's offset rotations, AngleAxis(az_offset, z) and
+    /// AngleAxis(-el_offset, y), found once (a frame composes them with the gimbal's exactly as
+    /// sensor_from_beam does, without its four sines and cosines per beam).
+    std::vector<std::array<Eigen::Quaterniond, 2>> offset_rotations_;
+    Eigen::Matrix3d world_from_sensor_rotation_;  ///< the mount's, found once
     std::vector<std::uint8_t> extra_mask_;          ///< by raster cell (row, column): bit k = extra probe k
     std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
     double extra_irradiance_ = 0.0;
