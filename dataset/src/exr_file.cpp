@@ -45,13 +45,21 @@ RangeImage first_returns(const Frame& frame) {
     image.range_m.assign(pixels, 0.0f);
     image.intensity.assign(pixels, 0.0f);
     image.object_id.assign(pixels, kNoReturnObjectId);
+    image.strongest_range_m.assign(pixels, 0.0f);
+    image.strongest_intensity.assign(pixels, 0.0f);
+    std::vector<bool> seen(pixels, false);
     for (const auto& r : frame.returns) {
-        if (r.return_index != 0) continue;
         if (r.column >= frame.columns || r.row >= frame.rows) {
             throw std::invalid_argument("write_frame_exr: return at column " + std::to_string(r.column) + ", row " +
                                         std::to_string(r.row) + " lies outside the frame's raster");
         }
         const std::size_t p = image.pixel(r.column, r.row);
+        if (!seen[p] || r.intensity > image.strongest_intensity[p]) {
+            image.strongest_range_m[p] = static_cast<float>(r.range_m);
+            image.strongest_intensity[p] = r.intensity;
+            seen[p] = true;
+        }
+        if (r.return_index != 0) continue;
         image.range_m[p] = static_cast<float>(r.range_m);
         image.intensity[p] = r.intensity;
         image.object_id[p] = r.object_id;
@@ -71,6 +79,8 @@ void write_frame_exr(const std::filesystem::path& path, const Frame& frame) {
     header.channels().insert("range_m", Imf::Channel(Imf::FLOAT));
     header.channels().insert("intensity", Imf::Channel(Imf::FLOAT));
     header.channels().insert("object_id", Imf::Channel(Imf::UINT));
+    header.channels().insert("strongest_range_m", Imf::Channel(Imf::FLOAT));
+    header.channels().insert("strongest_intensity", Imf::Channel(Imf::FLOAT));
     header.insert("frame_index", Imf::IntAttribute(static_cast<int>(image.frame_index)));
     header.insert("start_time_s", Imf::DoubleAttribute(image.start_time_s));
     header.insert("end_time_s", Imf::DoubleAttribute(image.end_time_s));
@@ -80,6 +90,8 @@ void write_frame_exr(const std::filesystem::path& path, const Frame& frame) {
     buffer.insert("range_m", slice(Imf::FLOAT, image.range_m, image.columns));
     buffer.insert("intensity", slice(Imf::FLOAT, image.intensity, image.columns));
     buffer.insert("object_id", slice(Imf::UINT, image.object_id, image.columns));
+    buffer.insert("strongest_range_m", slice(Imf::FLOAT, image.strongest_range_m, image.columns));
+    buffer.insert("strongest_intensity", slice(Imf::FLOAT, image.strongest_intensity, image.columns));
 
     AtomicFile out(path);
     {
@@ -109,6 +121,8 @@ RangeImage read_frame_exr(const std::filesystem::path& path) {
         image.range_m.resize(pixels);
         image.intensity.resize(pixels);
         image.object_id.resize(pixels);
+        image.strongest_range_m.assign(pixels, 0.0f);
+        image.strongest_intensity.assign(pixels, 0.0f);
 
         const auto require_channel = [&](const char* name, Imf::PixelType type) {
             const Imf::Channel* channel = header.channels().findChannel(name);
@@ -135,6 +149,11 @@ RangeImage read_frame_exr(const std::filesystem::path& path) {
         buffer.insert("range_m", slice(Imf::FLOAT, image.range_m, image.columns));
         buffer.insert("intensity", slice(Imf::FLOAT, image.intensity, image.columns));
         buffer.insert("object_id", slice(Imf::UINT, image.object_id, image.columns));
+        // Absent from images written before they existed: left at 0.
+        if (header.channels().findChannel("strongest_range_m"))
+            buffer.insert("strongest_range_m", slice(Imf::FLOAT, image.strongest_range_m, image.columns));
+        if (header.channels().findChannel("strongest_intensity"))
+            buffer.insert("strongest_intensity", slice(Imf::FLOAT, image.strongest_intensity, image.columns));
         exr.setFrameBuffer(buffer);
         exr.readPixels(0, window.max.y);
         return image;
