@@ -3,9 +3,10 @@
 
 Usage: preview.py DATASET_DIR [--frames N]
 
-Each row is one frame: left, the whole field in azimuth/elevation, points coloured by range;
-right, a close-up of each target's box (cross-range metres about its centre) with the points that
-hit it. Reads only the files a user gets (binary PCD frames and ground_truth.json).
+Each row is one frame: left, the whole field in azimuth/elevation, points coloured by range on
+one scale for the whole dataset (false alarms in grey, left out of the scale and of the axes),
+each object's box and label in its class's colour; right, a close-up of the first drone's box
+(cross-range metres about its centre) with the points that hit it. Reads only the files a user gets (binary PCD frames and ground_truth.json).
 """
 import argparse
 import json
@@ -15,6 +16,7 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.colors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -57,49 +59,70 @@ def az_el_deg(xyz):
             np.degrees(np.arctan2(xyz[:, 2], np.hypot(xyz[:, 0], xyz[:, 1]))))
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("dataset")
-    parser.add_argument("--frames", type=int, default=4, help="frames to draw, evenly spaced (default 4)")
-    args = parser.parse_args()
+# One colour per object class, for its points, its box and its label.
+CLASS_COLOURS = {"drone": "#d62728", "bird": "#ff7f0e", "plane": "#9467bd", "building": "#8c564b",
+                 "terrain": "#7f7f7f", "tree": "#2ca02c", "cloud": "#17becf", "background": "#bcbd22"}
+FALSE_ALARM_SOURCE = 2
 
-    truth = json.load(open(os.path.join(args.dataset, "ground_truth.json")))["frames"]
-    targets = {"drone", "bird", "plane"}
-    picks = sorted(set(np.linspace(0, len(truth) - 1, min(args.frames, len(truth))).round().astype(int)))
+
+def range_scale(frames_points):
+    """One colour scale for the whole dataset: the 1st to 99th percentile of the ranges of real
+    returns in the frames drawn (false alarms, drawn at random ranges, left out)."""
+    ranges = np.concatenate([p["range_m"][p["source"] != FALSE_ALARM_SOURCE].astype(float) for p in frames_points]
+                            + [np.zeros(0)])
+    if not len(ranges):
+        return 0.0, 1.0
+    lo, hi = np.percentile(ranges, [1, 99])
+    return float(lo), float(max(hi, lo + 1e-3))
+
+
+def draw(dataset, frames=4):
+    """The preview figure of a dataset: one row per frame drawn, one colour scale for all."""
+    truth = json.load(open(os.path.join(dataset, "ground_truth.json")))["frames"]
+    picks = sorted(set(np.linspace(0, len(truth) - 1, min(frames, len(truth))).round().astype(int)))
+    frames_points = [read_pcd(os.path.join(dataset, "frames", f"{truth[i]['index']:06d}.pcd")) for i in picks]
+    norm = matplotlib.colors.Normalize(*range_scale(frames_points))
     fig, axes = plt.subplots(len(picks), 2, figsize=(13, 3.2 * len(picks)), squeeze=False,
                              gridspec_kw={"width_ratios": [2.2, 1]})
-    for row, index in zip(axes, picks):
+    scatter = None
+    for row, index, points in zip(axes, picks, frames_points):
         frame = truth[index]
-        points = read_pcd(os.path.join(args.dataset, "frames", f"{frame['index']:06d}.pcd"))
         xyz = np.stack([points["x"], points["y"], points["z"]], axis=1).astype(float)
         az, el = az_el_deg(xyz)
         whole, close = row
-        scatter = whole.scatter(az, el, c=points["range_m"], s=3, cmap="viridis", linewidths=0)
-        fig.colorbar(scatter, ax=whole, label="range (m)")
-        whole.set_title(f"frame {frame['index']}: {len(points)} returns")
+        real = points["source"] != FALSE_ALARM_SOURCE
+        scatter = whole.scatter(az[real], el[real], c=points["range_m"][real], s=3, cmap="viridis", norm=norm,
+                                linewidths=0)
+        whole.scatter(az[~real], el[~real], s=3, c="lightgrey", linewidths=0, label="false alarms")
+        whole.set_title(f"frame {frame['index']}: {len(points)} returns ({int((~real).sum())} false alarms, grey)")
         whole.set_xlabel("azimuth (deg, left positive)")
         whole.set_ylabel("elevation (deg)")
-        whole.invert_xaxis()
-        # The field (the beams' own angles), not every box: an aircraft passing beside the field
-        # would shrink it to a dot.
-        if len(points):
-            beam_az, beam_el = np.degrees(points["beam_az"].astype(float)), np.degrees(points["beam_el"].astype(float))
+        # The field (the beams' own angles of real returns), not every box nor false alarm: an
+        # aircraft passing beside the field would shrink it to a dot.
+        if real.any():
+            beam_az = np.degrees(points["beam_az"][real].astype(float))
+            beam_el = np.degrees(points["beam_el"][real].astype(float))
             pad = 0.02 * max(np.ptp(beam_az), np.ptp(beam_el), 0.5)
             whole.set_xlim(beam_az.max() + pad, beam_az.min() - pad)
             whole.set_ylim(beam_el.min() - pad, beam_el.max() + pad)
+        else:
+            whole.invert_xaxis()
         close_done = False
         for obj in frame["objects"]:
-            if obj["class"] not in targets:
-                continue
+            colour = CLASS_COLOURS.get(obj["class"], "black")
             on = points["object_id"] == obj["id"]
-            whole.scatter(az[on], el[on], s=10, c="red", linewidths=0)
+            if obj["class"] in ("drone", "bird", "plane"):
+                whole.scatter(az[on], el[on], s=10, c=colour, linewidths=0)
             corners = box_corners(obj["box_sensor"])
             caz, cel = az_el_deg(corners)
+            if not obj["returns"] and obj["class"] not in ("drone", "bird", "plane"):
+                continue  # a static object out of this frame's field: no clutter
             whole.add_patch(plt.Rectangle((caz.min(), cel.min()), caz.max() - caz.min(), cel.max() - cel.min(),
-                                          fill=False, edgecolor="red", linewidth=1.5))
-            whole.annotate(f"{obj['class']} {obj['id']}: {obj['returns']} returns",
-                           (caz.min(), cel.max()), color="red", fontsize=8,
-                           xytext=(4, 6), textcoords="offset points")
+                                          fill=False, edgecolor=colour, linewidth=1.5))
+            whole.annotate(f"{obj['class']} {obj['id']}: {obj['returns']} returns", (caz.min(), cel.max()),
+                           color=colour, fontsize=9, fontweight="bold", xytext=(4, 6), textcoords="offset points",
+                           annotation_clip=True,
+                           bbox={"boxstyle": "round,pad=0.2", "facecolor": "white", "edgecolor": colour, "alpha": 0.85})
             # Close-up of the first drone: cross-range metres about its box centre, along the line of sight.
             if close_done or obj["class"] != "drone":
                 continue
@@ -111,10 +134,10 @@ def main():
             up = np.cross(sight, left)
             near = np.abs((xyz - centre) @ sight) < 5.0
             rel = xyz[near] - centre
-            close.scatter(rel @ left, rel @ up, s=14, c=np.where(on[near], "red", "grey"), linewidths=0)
+            close.scatter(rel @ left, rel @ up, s=14, c=np.where(on[near], colour, "grey"), linewidths=0)
             box = (corners - centre)
             close.add_patch(plt.Rectangle(((box @ left).min(), (box @ up).min()), np.ptp(box @ left),
-                                          np.ptp(box @ up), fill=False, edgecolor="red", linewidth=1.5))
+                                          np.ptp(box @ up), fill=False, edgecolor=colour, linewidth=1.5))
             close.set_title(f"{obj['class']} {obj['id']} at {np.linalg.norm(centre):.0f} m "
                             f"(points within 5 m in range)", fontsize=9)
         close.set_xlabel("cross-range left (m)")
@@ -123,6 +146,19 @@ def main():
         close.set_xlim(1.0, -1.0)
         close.set_ylim(-0.6, 0.6)
     fig.tight_layout()
+    # One colour bar for every frame, right of the figure.
+    fig.subplots_adjust(right=0.9)
+    bar = fig.add_axes([0.92, 0.1, 0.015, 0.8])
+    fig.colorbar(scatter, cax=bar, label="range (m), every frame")
+    return fig
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("dataset")
+    parser.add_argument("--frames", type=int, default=4, help="frames to draw, evenly spaced (default 4)")
+    args = parser.parse_args()
+    fig = draw(args.dataset, args.frames)
     out = os.path.join(args.dataset, "preview.png")
     tmp = out + ".tmp.png"
     fig.savefig(tmp, dpi=90)

@@ -77,7 +77,9 @@ async function main() {
   const detections = detectionFile ? await json('/run/' + detectionFile) : null;
   const scores = evalFile ? await json('/run/' + evalFile) : null;
   const frames = manifest.frames;
-  const target = detections?.target ?? scores?.target ?? manifest.mount?.cue_object ?? 0;
+  // The target: the one scored, else the cue. A run with neither has none (id 0 is the background
+  // map, never a target).
+  const target = detections?.target ?? scores?.target ?? (manifest.mount?.cue_object || null);
   document.getElementById('title').textContent = `${manifest.scenario_file ?? 'recorded run'} — ${frames.length} frames`;
 
   const host = document.getElementById('scene');
@@ -124,12 +126,13 @@ async function main() {
       if (background.has(p.object[i]) && p.source[i] === 0) { lo = Math.min(lo, p.range[i]); hi = Math.max(hi, p.range[i]); }
     }
     const colours = new Float32Array(3 * p.n);
+    const onTarget = [];
     for (let i = 0; i < p.n; ++i) {
       let c;
       if (p.source[i] === SOURCE_FALSE_ALARM) c = [1, 1, 1];
       else if (p.source[i] === SOURCE_VOLUME) c = [0.55, 0.55, 0.55];
       else if (background.has(p.object[i])) c = jet(hi > lo ? (p.range[i] - lo) / (hi - lo) : 0.5);
-      else if (p.object[i] === target) { c = [1, 0.25, 1]; ++targetReturns; }
+      else if (target !== null && p.object[i] === target) { c = [1, 0.25, 1]; ++targetReturns; onTarget.push(i); }
       else c = [0.25, 1, 1];
       colours.set(c, 3 * i);
     }
@@ -137,6 +140,17 @@ async function main() {
     geometry.setAttribute('position', new THREE.BufferAttribute(p.xyz, 3));
     geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
     next.add(new THREE.Points(geometry, new THREE.PointsMaterial({ size: 3, sizeAttenuation: false, vertexColors: true })));
+    // The target's points again, larger and drawn last over everything: the detection's and the
+    // ground truth's outlines enclose them and would otherwise hide them.
+    if (onTarget.length) {
+      const xyz = new Float32Array(3 * onTarget.length);
+      onTarget.forEach((i, j) => xyz.set(p.xyz.subarray(3 * i, 3 * i + 3), 3 * j));
+      const top = new THREE.BufferGeometry();
+      top.setAttribute('position', new THREE.BufferAttribute(xyz, 3));
+      const points = new THREE.Points(top, new THREE.PointsMaterial({ size: 6, sizeAttenuation: false, color: 0xff40ff, depthTest: false }));
+      points.renderOrder = 10;
+      next.add(points);
+    }
 
     // Ground truth (red) and detections (yellow), in the sensor frame.
     let boxes = 0, detectedBoxes = 0, targetBox = null;
@@ -178,6 +192,10 @@ async function main() {
       const r = new Float32Array(range, 8, w * h);
       const canvas = document.getElementById('range');
       canvas.width = w; canvas.height = h;
+      // At least 3 screen pixels a raster line: a 3600 x 16 image at the panel's width would be a
+      // strip one pixel high.
+      canvas.style.height = `${Math.max(canvas.clientWidth * h / w, 3 * h)}px`;
+      state.range_image = { width: w, height: h, shown_height_px: canvas.getBoundingClientRect().height };
       const ctx = canvas.getContext('2d'), img = ctx.createImageData(w, h);
       // Colours spread over the 2nd to 98th percentile: one near target does not flatten the rest.
       const seen = Array.from(r).filter((v) => v > 0).sort((a, b) => a - b);
@@ -197,14 +215,15 @@ async function main() {
       ['time', `${(info.start_time_s ?? 0).toFixed(3)} s`],
       ['gimbal az / el', `${(((info.gimbal_az_rad ?? 0) * 180) / Math.PI).toFixed(3)} / ${(((info.gimbal_el_rad ?? 0) * 180) / Math.PI).toFixed(3)} deg`],
       ['returns', p.n],
+      ['target', target === null ? 'none (no cue, no detections)' : `object ${target}`],
       ['range to target', targetBox ? `${Math.hypot(...targetBox.box_sensor.centre_m).toFixed(1)} m` : '-'],
-      ['target returns', targetReturns],
+      ['target returns', target === null ? '-' : targetReturns],
       ['L2', perFrame?.l2_m != null ? `${perFrame.l2_m.toFixed(3)} m` : '-'],
       ['IoU', perFrame ? perFrame.iou.toFixed(3) : '-'],
     ];
     document.getElementById('panel').innerHTML = rows.map(([a, b]) => `<tr><td>${a}</td><td>${b}</td></tr>`).join('');
     document.getElementById('frame-label').textContent = `${k + 1}/${frames.length}`;
-    Object.assign(state, { ready: true, frame: info.index, points: p.n, target_returns: targetReturns, boxes, detected_boxes: detectedBoxes });
+    Object.assign(state, { ready: true, frame: info.index, points: p.n, target, target_returns: targetReturns, boxes, detected_boxes: detectedBoxes });
     document.getElementById('state').textContent = JSON.stringify(state);
   }
 

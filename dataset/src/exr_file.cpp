@@ -47,13 +47,21 @@ RangeImage range_image_of(const Frame& frame) {
     image.range_m.assign(pixels, 0.0f);
     image.intensity.assign(pixels, 0.0f);
     image.object_id.assign(pixels, kNoReturnObjectId);
+    image.strongest_range_m.assign(pixels, 0.0f);
+    image.strongest_intensity.assign(pixels, 0.0f);
+    std::vector<bool> seen(pixels, false);
     for (const auto& r : frame.returns) {
-        if (r.return_index != 0) continue;
         if (r.column >= frame.columns || r.row >= frame.rows) {
             throw std::invalid_argument("write_frame_exr: return at column " + std::to_string(r.column) + ", row " +
                                         std::to_string(r.row) + " lies outside the frame's raster");
         }
         const std::size_t p = image.pixel(r.column, r.row);
+        if (!seen[p] || r.intensity > image.strongest_intensity[p]) {
+            image.strongest_range_m[p] = static_cast<float>(r.range_m);
+            image.strongest_intensity[p] = r.intensity;
+            seen[p] = true;
+        }
+        if (r.return_index != 0) continue;
         image.range_m[p] = static_cast<float>(r.range_m);
         image.intensity[p] = r.intensity;
         image.object_id[p] = r.object_id;
@@ -65,7 +73,9 @@ std::vector<RangeImageChannel> range_image_channels(const RangeImage& image) {
     return {{"Y", &image.range_m, nullptr},
             {"range_m", &image.range_m, nullptr},
             {"intensity", &image.intensity, nullptr},
-            {"object_id", nullptr, &image.object_id}};
+            {"object_id", nullptr, &image.object_id},
+            {"strongest_range_m", &image.strongest_range_m, nullptr},
+            {"strongest_intensity", &image.strongest_intensity, nullptr}};
 }
 
 void write_frame_exr(const std::filesystem::path& path, const Frame& frame) {
@@ -118,6 +128,8 @@ RangeImage read_frame_exr(const std::filesystem::path& path) {
         image.range_m.resize(pixels);
         image.intensity.resize(pixels);
         image.object_id.resize(pixels);
+        image.strongest_range_m.assign(pixels, 0.0f);
+        image.strongest_intensity.assign(pixels, 0.0f);
 
         const auto require_channel = [&](const char* name, Imf::PixelType type) {
             const Imf::Channel* channel = header.channels().findChannel(name);
@@ -144,6 +156,11 @@ RangeImage read_frame_exr(const std::filesystem::path& path) {
         buffer.insert("range_m", slice(Imf::FLOAT, image.range_m, image.columns));
         buffer.insert("intensity", slice(Imf::FLOAT, image.intensity, image.columns));
         buffer.insert("object_id", slice(Imf::UINT, image.object_id, image.columns));
+        // Absent from images written before they existed: left at 0.
+        if (header.channels().findChannel("strongest_range_m"))
+            buffer.insert("strongest_range_m", slice(Imf::FLOAT, image.strongest_range_m, image.columns));
+        if (header.channels().findChannel("strongest_intensity"))
+            buffer.insert("strongest_intensity", slice(Imf::FLOAT, image.strongest_intensity, image.columns));
         exr.setFrameBuffer(buffer);
         exr.readPixels(0, window.max.y);
         return image;

@@ -38,8 +38,8 @@ py::array points_array(const PcdCloud& cloud);
 /// The returns as write_frame_pcd writes them (frame_pcd_cloud), as points_array.
 py::array points_array(const std::vector<Return>& returns);
 
-/// The EXR's channels (range_image_channels: Y, range_m, intensity, object_id), each a
-/// rows x columns array, row 0 the top raster line.
+/// The EXR's channels (range_image_channels: Y, range_m, intensity, object_id, and the strongest
+/// return's range and intensity), each a rows x columns array, row 0 the top raster line.
 py::dict range_image_dict(const RangeImage& image);
 
 /// The objects of a frame as ground_truth.json holds them.

@@ -252,7 +252,7 @@ Scene read_scene(JsonFields& scenario, const std::filesystem::path& scenario_dir
         std::map<std::uint32_t, std::size_t> index_of_id;
         for (std::size_t i = 0; i < objects.size(); ++i) {
             JsonFields o(objects[i], scenario.file(), index_path(objects_path, i));
-            const auto id = static_cast<std::uint32_t>(o.integer("id", 1, 0xFFFFFFFFLL));
+            const auto id = static_cast<std::uint32_t>(o.integer("id", 1, 0xFFFFFFFDLL));
             if (const auto [first, inserted] = index_of_id.emplace(id, i); !inserted) {
                 o.fail("id", std::to_string(id) + " is already the id of " + index_path(objects_path, first->second));
             }

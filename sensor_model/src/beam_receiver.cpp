@@ -97,6 +97,10 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
 
 void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns) const {
     returns.clear();
+    // The receiver's minimum range: echoes from closer (by their true range, before any folding)
+    // never reach a detector that is still blind from the outgoing pulse.
+    if (const double min_range_m = sensor_.receiver.min_range_m; min_range_m > 0.0)
+        for (BeamSurface& s : surfaces) std::erase_if(s.echoes, [min_range_m](const Echo& e) { return e.range_m < min_range_m; });
     // Speckle: each surface's energy fluctuates as Gamma(M), M the speckle cells the aperture
     // averages for the illuminated spot (the part of the footprint on that surface).
     RandomSequence speckle(key.seed, RandomStream::speckle, key.frame, key.beam);

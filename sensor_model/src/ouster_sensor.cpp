@@ -20,16 +20,19 @@ constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 /// OS2: 240 m; no divergence found, so an estimate: the OS1-128's 0.18 deg FWHM halved, as the OS2
 /// spreads its 128 channels over half the OS1-128's vertical field (22.5 deg, not 45: the same
 /// emitters behind twice the focal length).
+/// Minimum range: the OS1 datasheet's range is 0.8 m - 120 m; none found for the OS2, so the
+/// same 0.8 m (the same receiver design behind longer optics).
 /// Peak power is not published: it is set so that the receiver estimated in ouster_sensor_json
 /// sees an 80 % Lambertian target at the datasheet's range, in full daylight (ladarsim's
 /// 0.25 W/m^2/nm of sunlight), at twice its threshold.
 struct ProductLine {
     std::string_view prefix;
     double max_range_m;
+    double min_range_m;
     double divergence_fwhm_deg;
     double peak_power_w;
 };
-constexpr ProductLine kProductLines[] = {{"OS-1", 120.0, 0.13, 2.4}, {"OS-2", 240.0, 0.09, 6.7}};
+constexpr ProductLine kProductLines[] = {{"OS-1", 120.0, 0.8, 0.13, 2.4}, {"OS-2", 240.0, 0.8, 0.09, 6.7}};
 
 const ProductLine& product_line(const OusterCalibration& c) {
     for (const ProductLine& line : kProductLines) {
@@ -98,6 +101,7 @@ nlohmann::json ouster_sensor_json(const OusterCalibration& c) {
           {"saturation_current_a", 2e-3},
           {"false_alarm_rate_hz", false_alarm_rate_hz},
           {"max_range_m", line.max_range_m},
+          {"min_range_m", line.min_range_m},
           {"range_folding", false},
           // Surfaces closer along a beam than half a pulse length make one echo.
           {"return_gap_m", kSpeedOfLight_mps * pulse_width_ns * 1e-9 / 2.0},

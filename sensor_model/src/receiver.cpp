@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "ladarsim/dataset/input_error.h"
+
 namespace ladarsim::sensor_model {
 
 namespace {
@@ -23,6 +25,9 @@ Receiver Receiver::read(JsonFields& r) {
     x.saturation_current_a = r.number("saturation_current_a", 1e-9, 1e3);
     x.false_alarm_rate_hz = r.number("false_alarm_rate_hz", 1e-9, 1e9);
     x.max_range_m = r.number("max_range_m", 1.0, 1e6);
+    x.min_range_m = r.number("min_range_m", 0.0, 1e4, 0.0);
+    if (x.min_range_m >= x.max_range_m)
+        throw InputError(r.file(), r.path_of("min_range_m"), "must be below max_range_m (" + std::to_string(x.max_range_m) + ")");
     x.range_folding = r.boolean("range_folding", false);
     x.return_gap_m = r.number("return_gap_m", 0.0, 1e3);
     const std::string reported = r.choice("reported_returns", kReportedReturnsNames, "all");
@@ -42,6 +47,7 @@ nlohmann::json Receiver::to_json() const {
             {"saturation_current_a", saturation_current_a},
             {"false_alarm_rate_hz", false_alarm_rate_hz},
             {"max_range_m", max_range_m},
+            {"min_range_m", min_range_m},
             {"range_folding", range_folding},
             {"return_gap_m", return_gap_m},
             {"reported_returns", to_string(reported_returns)}};

@@ -19,6 +19,7 @@
 #include "ladarsim/dataset/json_file.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/galvo_raster.h"
+#include "ladarsim/sensor_model/geometry_checks.h"
 
 namespace ladarsim::sensor_model {
 
@@ -158,6 +159,9 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     if (team.any(false)) throw FrameFailure("the first process could not prepare " + staging.string());
 
     FrameRenderer renderer(scenario);
+    if (first_process)
+        for (const std::string& w : geometry_warnings(scenario, renderer, scenario.render.frames))
+            spdlog::warn("{}: {}", scenario.file.string(), w);
     DatasetSummary summary;
     summary.out_dir = out;
     using Clock = std::chrono::steady_clock;

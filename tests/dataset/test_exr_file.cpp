@@ -51,7 +51,7 @@ Frame sample_frame() {
         beam_return(0, 0, 0, 850.25, 0.125f, 0),
         beam_return(3, 1, 0, 1000.5, 0.5f, 3),
         beam_return(3, 1, 1, 1020.75, 0.25f, 0),
-        beam_return(4, 2, 0, 12.0, 2.0f, 0xFFFFFFFEu),
+        beam_return(4, 2, 0, 12.0, 2.0f, 0xFFFFFFFDu),
     };
     return frame;
 }
@@ -90,7 +90,8 @@ TEST_CASE("OpenEXR reads our image: size, channels, compression, attributes", "[
     }
     // OpenEXR lists channels alphabetically.
     const std::vector<std::pair<std::string, Imf::PixelType>> expected = {
-        {"Y", Imf::FLOAT}, {"intensity", Imf::FLOAT}, {"object_id", Imf::UINT}, {"range_m", Imf::FLOAT}};
+        {"Y", Imf::FLOAT},         {"intensity", Imf::FLOAT},           {"object_id", Imf::UINT},
+        {"range_m", Imf::FLOAT},   {"strongest_intensity", Imf::FLOAT}, {"strongest_range_m", Imf::FLOAT}};
     CHECK(channels == expected);
 
     const auto* index = header.findTypedAttribute<Imf::IntAttribute>("frame_index");
@@ -104,7 +105,7 @@ TEST_CASE("OpenEXR reads our image: size, channels, compression, attributes", "[
     CHECK(end->value() == 4.3);
 }
 
-TEST_CASE("OpenEXR reads the hand-set pixels: first returns, no-return pixels 0 / 0xFFFFFFFF", "[exr_file]") {
+TEST_CASE("OpenEXR reads the hand-set pixels: first returns, no-return pixels 0 / 0xFFFFFFFE (a false alarm is 0xFFFFFFFF)", "[exr_file]") {
     const ScratchDir dir;
     write_frame_exr(dir / "f.exr", sample_frame());
     Imf::InputFile exr((dir / "f.exr").string().c_str());
@@ -122,13 +123,13 @@ TEST_CASE("OpenEXR reads the hand-set pixels: first returns, no-return pixels 0 
     CHECK(ids[0] == 0);
     CHECK(range[14] == 12.0f);
     CHECK(intensity[14] == 2.0f);
-    CHECK(ids[14] == 0xFFFFFFFEu);
+    CHECK(ids[14] == 0xFFFFFFFDu);
     CHECK(y == range);
     for (int p : {1, 2, 3, 4, 5, 6, 7, 9, 10, 11, 12, 13}) {
         INFO("pixel " << p);
         CHECK(range[p] == 0.0f);
         CHECK(intensity[p] == 0.0f);
-        CHECK(ids[p] == 0xFFFFFFFFu);
+        CHECK(ids[p] == 0xFFFFFFFEu);
     }
 }
 
@@ -151,7 +152,7 @@ TEST_CASE("round trip through read_frame_exr is exact", "[exr_file]") {
     ids[image.pixel(3, 1)] = 3;
     range[14] = 12.0f;
     intensity[14] = 2.0f;
-    ids[14] = 0xFFFFFFFEu;
+    ids[14] = 0xFFFFFFFDu;
     CHECK(image.range_m == range);
     CHECK(image.intensity == intensity);
     CHECK(image.object_id == ids);
@@ -207,4 +208,22 @@ TEST_CASE("not an EXR, or a truncated one: InputError naming the file", "[exr_fi
     std::filesystem::resize_file(dir / "f.exr", std::filesystem::file_size(dir / "f.exr") / 2);
     const InputError e = error_of(dir / "f.exr");
     CHECK(e.file() == (dir / "f.exr").string());
+}
+
+TEST_CASE("the strongest return's range and intensity: their own channels, the first return's when it is the strongest", "[exr_file]") {
+    const ScratchDir dir;
+    Frame frame = sample_frame();
+    frame.returns.push_back(beam_return(1, 0, 0, 30.0, 0.5f, 7));
+    frame.returns.push_back(beam_return(1, 0, 1, 95.0, 4.0f, 8));  // a later, brighter return
+    write_frame_exr(dir / "f.exr", frame);
+    const RangeImage image = read_frame_exr(dir / "f.exr");
+    CHECK(image.range_m[image.pixel(1, 0)] == 30.0f);
+    CHECK(image.object_id[image.pixel(1, 0)] == 7u);
+    CHECK(image.strongest_range_m[image.pixel(1, 0)] == 95.0f);
+    CHECK(image.strongest_intensity[image.pixel(1, 0)] == 4.0f);
+    CHECK(image.strongest_range_m[image.pixel(3, 1)] == 1000.5f);  // first and strongest
+    CHECK(image.strongest_intensity[image.pixel(3, 1)] == 0.5f);
+    CHECK(image.strongest_range_m[image.pixel(2, 2)] == 0.0f);     // no return
+    CHECK(image.object_id[image.pixel(2, 2)] == kNoReturnObjectId);
+    CHECK(kNoReturnObjectId != kNoObject);
 }

@@ -42,7 +42,7 @@ def test_frames_equal_the_command_lines_files(cli_small):
 def test_range_image_holds_each_beams_first_return_as_the_exr_does(cli_small):
     frame = next(iter(ladarsim.render(SMALL, frames=1)))
     image = frame.range_image
-    assert sorted(image) == ["Y", "intensity", "object_id", "range_m"]
+    assert sorted(image) == ["Y", "intensity", "object_id", "range_m", "strongest_intensity", "strongest_range_m"]
     rows, columns = image["range_m"].shape
     assert (columns, rows) == (150, 20)
     assert image["range_m"].dtype == np.float32 and image["object_id"].dtype == np.uint32
@@ -52,9 +52,17 @@ def test_range_image_holds_each_beams_first_return_as_the_exr_does(cli_small):
     expected[first["row"], first["column"]] = first["range_m"].astype(np.float32)
     assert np.array_equal(image["range_m"], expected)
     assert np.array_equal(image["Y"], expected)
-    ids = np.full((rows, columns), 0xFFFFFFFF, np.uint32)
+    ids = np.full((rows, columns), 0xFFFFFFFE, np.uint32)  # an empty pixel, unlike a false alarm
     ids[first["row"], first["column"]] = first["object_id"]
     assert np.array_equal(image["object_id"], ids)
+    strongest = np.zeros((rows, columns), np.float32)
+    brightest = np.zeros((rows, columns), np.float32)
+    for p in frame.points:
+        if p["intensity"] > brightest[p["row"], p["column"]] or strongest[p["row"], p["column"]] == 0:
+            brightest[p["row"], p["column"]] = p["intensity"]
+            strongest[p["row"], p["column"]] = np.float32(p["range_m"])
+    assert np.array_equal(image["strongest_range_m"], strongest)
+    assert np.array_equal(image["strongest_intensity"], brightest)
     # And as the command line's EXR holds it (read back through the module).
     on_disk = ladarsim.Dataset(cli_small)[0].range_image
     for name in image:

@@ -53,6 +53,7 @@ TEST_CASE("the Ouster unit as a sensor document points every column and channel 
         CHECK(doc.at("transmitter").at("pulse_rate_hz") == Approx(1024 * 10));
         CHECK(doc.at("receiver").at("max_range_m") == u.spec_range_m);
         CHECK(doc.at("receiver").at("reported_returns") == "strongest");
+        CHECK(doc.at("receiver").at("min_range_m") == 0.8);  // the OS1 datasheet's 0.8 m - 120 m
         const std::string description = doc.at("description");
         CHECK(description.find(std::string(u.stem) + ".json") != std::string::npos);
         CHECK(description.find("estimate") != std::string::npos);
@@ -63,7 +64,7 @@ TEST_CASE("the Ouster unit as a sensor document points every column and channel 
             {"optics", {"aperture_diameter_m", "optics_efficiency", "receiver_fov_mrad", "filter_width_nm"}},
             {"receiver",
              {"responsivity_a_per_w", "apd_gain", "excess_noise_factor", "bandwidth_hz", "dark_current_a", "load_resistance_ohm",
-              "temperature_k", "saturation_current_a", "false_alarm_rate_hz", "max_range_m", "range_folding", "return_gap_m",
+              "temperature_k", "saturation_current_a", "false_alarm_rate_hz", "max_range_m", "min_range_m", "range_folding", "return_gap_m",
               "reported_returns"}},
             {"gimbal", {"az_limit_deg", "el_min_deg", "el_max_deg", "slew_rate_dps"}}};
         std::set<std::string> top;

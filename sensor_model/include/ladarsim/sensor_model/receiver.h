@@ -26,6 +26,10 @@ struct Receiver {
     /// Target rate of noise-only threshold crossings; it sets the detection threshold.
     double false_alarm_rate_hz = 0.0;
     double max_range_m = 0.0;         ///< returns beyond are not reported
+    /// Returns from closer than this are not reported: the receiver is blind while the outgoing
+    /// pulse's own flash (scattered inside the optics) fades, or where the transmitted beam has not
+    /// yet entered the receiver's field. Real sensors all have one; 0 (the default) for none.
+    double min_range_m = 0.0;
     /// Several pulses in the air at once: returns beyond c / (2 PRF) arrive in a later pulse's
     /// range gate and are reported at their range modulo the unambiguous range.
     bool range_folding = false;
