@@ -68,11 +68,19 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
     sorted.clear();
     for (const auto& [range, i] : order) sorted.push_back(echoes[i]);
     echoes.swap(sorted);
+    // Echo lists of surfaces dropped from the end, kept for the next beam that needs more.
+    thread_local std::vector<std::vector<Echo>> spare;
     std::size_t count = 0;
     for (std::size_t first = 0; first < echoes.size();) {
         std::size_t last = first + 1;
         while (last < echoes.size() && same_surface(echoes[last - 1], echoes[last], gap_m)) ++last;
-        if (count == surfaces.size()) surfaces.emplace_back();
+        if (count == surfaces.size()) {
+            surfaces.emplace_back();
+            if (!spare.empty()) {
+                surfaces.back().echoes = std::move(spare.back());
+                spare.pop_back();
+            }
+        }
         BeamSurface& surface = surfaces[count++];
         surface.echoes.clear();
         surface.weight = 0.0;
@@ -98,6 +106,11 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
                                     ->first;
         }
         first = last;
+    }
+    // (A few: volume surfaces arrive with lists of their own, which would otherwise pile up.)
+    for (std::size_t i = count; i < surfaces.size() && spare.size() < 16; ++i) {
+        surfaces[i].echoes.clear();
+        spare.push_back(std::move(surfaces[i].echoes));
     }
     surfaces.resize(count);
 }
@@ -318,7 +331,8 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
         const double weight = sub_rays[i].weight;
         double fog = 1.0;
         if (media) {
-            const std::vector<raytrace::VolumeSegment> volumes = traced_.volumes_along(rays[i]);
+            thread_local std::vector<raytrace::VolumeSegment> volumes;
+            traced_.volumes_along(rays[i], volumes);
             add_volume_echoes(volumes, hits[i] ? hits[i]->range_m : sensor.receiver.max_range_m,
                               sensor.transmitter.pulse_energy_j() * weight * sensor.optics.optics_efficiency, weight,
                               sensor.optics.aperture_area_m2(), receiver_, volume_draws, out.volume);
