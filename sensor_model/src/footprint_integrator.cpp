@@ -365,14 +365,14 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     for (const Probe& p : probes) {
         if (excluded && footprint_.contains(*excluded, p.x_rad, p.y_rad)) continue;
         used.push_back(&p);
-        if (!*p.hit) continue;
-        const raytrace::Hit& h = **p.hit;
+        if (!p.hit->hit) continue;
+        const raytrace::Hit& h = *p.hit->hit;
         if (hits++ == 0) object_id = h.object_id;
         one_object = one_object && h.object_id == object_id;
         const double g = p.irradiance;
         gauss.push_back(g);
         normal_sum += g * h.normal_world.cast<double>();
-        point_sum += g * (origin + h.range_m * p.direction_world);
+        point_sum += g * p.hit->point_world;
         reflectance_sum += g * h.reflectance;
         g_sum += g;
     }
@@ -389,14 +389,13 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     double q_sum = 0.0, q2_sum = 0.0, g2_sum = 0.0;
     for (std::size_t k = 0; k < used.size(); ++k) {
         const Probe& p = *used[k];
-        const raytrace::Hit& h = **p.hit;
-        const Eigen::Vector3d point = origin + h.range_m * p.direction_world;
+        const Eigen::Vector3d& point = p.hit->point_world;
         if (std::abs(normal.dot(point - centroid)) > scenario_.sensor.receiver.return_gap_m) return Patch::mixed;
         const double nd = normal.dot(p.direction_world);
         if (std::abs(nd) < 1e-9) return Patch::mixed;
         const double model_range = plane_distance / nd;
         const double model = reflectance * std::abs(nd) / (model_range * model_range);
-        const double seen = h.reflectance * h.cos_incidence / (h.range_m * h.range_m);
+        const double seen = p.hit->seen;
         // A black patch (reflectance 0, e.g. a map point recorded with intensity 0) sees nothing
         // and the plane predicts nothing: they agree.
         const double q = model > 0.0 ? seen / model : 1.0;
