@@ -399,6 +399,10 @@ std::vector<VolumeSegment> TracedScene::volumes_along(const Ray& ray) const {
     return impl_->volumes->along(ray, impl_->embree_time(ray.time_s));
 }
 
+void TracedScene::volumes_along(const Ray& ray, std::vector<VolumeSegment>& segments) const {
+    impl_->volumes->along(ray, impl_->embree_time(ray.time_s), segments);
+}
+
 bool TracedScene::has_volumes() const { return !impl_->volumes->empty(); }
 
 void TracedScene::object_bounds(double time_s, std::vector<ObjectBounds>& out) const {

@@ -101,7 +101,13 @@ void VolumeBoundaries::find_volumes_holding_origin() {
 
 std::vector<VolumeSegment> VolumeBoundaries::along(const Ray& ray, float time) const {
     std::vector<VolumeSegment> segments;
-    if (volume_objects.empty()) return segments;
+    along(ray, time, segments);
+    return segments;
+}
+
+void VolumeBoundaries::along(const Ray& ray, float time, std::vector<VolumeSegment>& segments) const {
+    segments.clear();
+    if (volume_objects.empty()) return;
     const Eigen::Vector3d o = ray.origin_world - origin_world;
     auto close = [&](std::uint32_t geometry, double enter_m, double exit_m, std::uint32_t prim) {
         const scene::SceneObject& object = *volume_objects[geometry];
@@ -109,11 +115,13 @@ std::vector<VolumeSegment> VolumeBoundaries::along(const Ray& ray, float time) c
         segments.push_back({object.id, enter_m, exit_m, m.extinction_per_m, m.backscatter_per_m_sr});
     };
     struct Open { std::uint32_t geometry; double enter_m; std::uint32_t prim; };
-    std::vector<Open> open;
+    thread_local std::vector<Open> open;
+    open.clear();
     const bool from_sensor = o.squaredNorm() < 1e-12;
     thread_local std::vector<Boundary> boundaries;
     boundaries_along(o, ray, time, boundaries);
-    std::vector<std::uint32_t> met;  // volumes whose boundary this ray has crossed already
+    thread_local std::vector<std::uint32_t> met;  // volumes whose boundary this ray has crossed already
+    met.clear();
     for (std::uint32_t g = 0; g < volume_objects.size(); ++g)
         if (from_sensor && origin_inside[g]) open.push_back({g, 0.0, 0});
     for (const Boundary& b : boundaries) {
@@ -133,7 +141,6 @@ std::vector<VolumeSegment> VolumeBoundaries::along(const Ray& ray, float time) c
     }
     for (const Open& x : open) close(x.geometry, x.enter_m, ray.max_range_m, x.prim);
     std::sort(segments.begin(), segments.end(), [](const VolumeSegment& a, const VolumeSegment& b) { return a.enter_m < b.enter_m; });
-    return segments;
 }
 
 }  // namespace ladarsim::raytrace

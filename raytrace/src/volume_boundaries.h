@@ -26,6 +26,8 @@ public:
     bool empty() const { return volume_objects.empty(); }
     /// TracedScene::volumes_along for a ray at `time` in the scene's time window (0 to 1).
     std::vector<VolumeSegment> along(const Ray& ray, float time) const;
+    /// The same into `segments` (cleared first; per-thread scratch inside: no allocation once warm).
+    void along(const Ray& ray, float time, std::vector<VolumeSegment>& segments) const;
 
 private:
     struct Boundary {

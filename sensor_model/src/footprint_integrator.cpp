@@ -68,11 +68,19 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
     sorted.clear();
     for (const auto& [range, i] : order) sorted.push_back(echoes[i]);
     echoes.swap(sorted);
+    // Echo lists of surfaces dropped from the end, kept for the next beam that needs more.
+    thread_local std::vector<std::vector<Echo>> spare;
     std::size_t count = 0;
     for (std::size_t first = 0; first < echoes.size();) {
         std::size_t last = first + 1;
         while (last < echoes.size() && same_surface(echoes[last - 1], echoes[last], gap_m)) ++last;
-        if (count == surfaces.size()) surfaces.emplace_back();
+        if (count == surfaces.size()) {
+            surfaces.emplace_back();
+            if (!spare.empty()) {
+                surfaces.back().echoes = std::move(spare.back());
+                spare.pop_back();
+            }
+        }
         BeamSurface& surface = surfaces[count++];
         surface.echoes.clear();
         surface.weight = 0.0;
@@ -98,6 +106,11 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
                                     ->first;
         }
         first = last;
+    }
+    // (A few: volume surfaces arrive with lists of their own, which would otherwise pile up.)
+    for (std::size_t i = count; i < surfaces.size() && spare.size() < 16; ++i) {
+        surfaces[i].echoes.clear();
+        spare.push_back(std::move(surfaces[i].echoes));
     }
     surfaces.resize(count);
 }
@@ -318,7 +331,8 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
         const double weight = sub_rays[i].weight;
         double fog = 1.0;
         if (media) {
-            const std::vector<raytrace::VolumeSegment> volumes = traced_.volumes_along(rays[i]);
+            thread_local std::vector<raytrace::VolumeSegment> volumes;
+            traced_.volumes_along(rays[i], volumes);
             add_volume_echoes(volumes, hits[i] ? hits[i]->range_m : sensor.receiver.max_range_m,
                               sensor.transmitter.pulse_energy_j() * weight * sensor.optics.optics_efficiency, weight,
                               sensor.optics.aperture_area_m2(), receiver_, volume_draws, out.volume);
@@ -351,14 +365,14 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     for (const Probe& p : probes) {
         if (excluded && footprint_.contains(*excluded, p.x_rad, p.y_rad)) continue;
         used.push_back(&p);
-        if (!*p.hit) continue;
-        const raytrace::Hit& h = **p.hit;
+        if (!p.hit->hit) continue;
+        const raytrace::Hit& h = *p.hit->hit;
         if (hits++ == 0) object_id = h.object_id;
         one_object = one_object && h.object_id == object_id;
         const double g = p.irradiance;
         gauss.push_back(g);
         normal_sum += g * h.normal_world.cast<double>();
-        point_sum += g * (origin + h.range_m * p.direction_world);
+        point_sum += g * p.hit->point_world;
         reflectance_sum += g * h.reflectance;
         g_sum += g;
     }
@@ -375,14 +389,13 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     double q_sum = 0.0, q2_sum = 0.0, g2_sum = 0.0;
     for (std::size_t k = 0; k < used.size(); ++k) {
         const Probe& p = *used[k];
-        const raytrace::Hit& h = **p.hit;
-        const Eigen::Vector3d point = origin + h.range_m * p.direction_world;
+        const Eigen::Vector3d& point = p.hit->point_world;
         if (std::abs(normal.dot(point - centroid)) > scenario_.sensor.receiver.return_gap_m) return Patch::mixed;
         const double nd = normal.dot(p.direction_world);
         if (std::abs(nd) < 1e-9) return Patch::mixed;
         const double model_range = plane_distance / nd;
         const double model = reflectance * std::abs(nd) / (model_range * model_range);
-        const double seen = h.reflectance * h.cos_incidence / (h.range_m * h.range_m);
+        const double seen = p.hit->seen;
         // A black patch (reflectance 0, e.g. a map point recorded with intensity 0) sees nothing
         // and the plane predicts nothing: they agree.
         const double q = model > 0.0 ? seen / model : 1.0;

@@ -144,10 +144,10 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
 
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
-    thread_local std::vector<std::optional<raytrace::Hit>*> slots;
+    thread_local std::vector<ProbeHit*> slots;
     rays.clear();
     slots.clear();
-    auto add = [&](const Eigen::Vector3d& direction, double time_s, std::optional<raytrace::Hit>* slot) {
+    auto add = [&](const Eigen::Vector3d& direction, double time_s, ProbeHit* slot) {
         raytrace::Ray r;
         r.origin_world = scenario_.mount.position_world;
         r.direction = direction;
@@ -169,7 +169,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     }
     hits.resize(rays.size());
     traced_.trace(rays, hits);
-    for (std::size_t i = 0; i < rays.size(); ++i) *slots[i] = hits[i];
+    for (std::size_t i = 0; i < rays.size(); ++i) slots[i]->set(hits[i], rays[i].origin_world, rays[i].direction);
     return rays.size();
 }
 

@@ -52,6 +52,8 @@ public:
     /// placed where their trajectory puts them at time 0 (clouds drift little over a scan). Meshes
     /// must be closed and face outwards: a ray that first meets a back face started inside.
     std::vector<VolumeSegment> volumes_along(const Ray& ray) const;
+    /// The same into `segments` (cleared first), allocating nothing once it is warm.
+    void volumes_along(const Ray& ray, std::vector<VolumeSegment>& segments) const;
     bool has_volumes() const;
 
     /// The bounds of every mesh object (not the background map) for a ray emitted at `time_s`: a

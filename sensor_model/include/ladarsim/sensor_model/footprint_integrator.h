@@ -44,13 +44,28 @@ struct BeamAim {
     std::uint32_t cell;               ///< raster cell index: keys the beam's random draws
 };
 
+/// A probe ray's hit, with what the plane test asks of it found once for every beam whose
+/// footprint the probe falls in (some 25).
+struct ProbeHit {
+    std::optional<raytrace::Hit> hit;
+    Eigen::Vector3d point_world = Eigen::Vector3d::Zero();  ///< origin + range_m * direction
+    double seen = 0.0;  ///< reflectance * cos_incidence / range_m^2: the energy it saw, but constants
+    /// Fills the fields above from `hit` of a probe leaving `origin` along `direction`.
+    void set(const std::optional<raytrace::Hit>& h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
+        hit = h;
+        if (!h) return;
+        point_world = origin + h->range_m * direction;
+        seen = h->reflectance * h->cos_incidence / (h->range_m * h->range_m);
+    }
+};
+
 /// A ray traced ahead for a beam: the beam's own axis, a neighbouring beam's axis that falls
 /// inside its footprint, or an extra ray where the raster leaves the footprint uncovered.
 struct Probe {
     double x_rad, y_rad;  ///< offset from the beam axis, in footprint coordinates
     double irradiance;    ///< the beam's relative irradiance there, exp(-2 r^2 / w^2)
     Eigen::Vector3d direction_world;
-    const std::optional<raytrace::Hit>* hit;
+    const ProbeHit* hit;
 };
 
 /// What one beam met, before the receiver.

@@ -79,7 +79,7 @@ private:
     // Pass 1 results, by raster cell (row, column); extra probes at 4 * cell + k.
     std::vector<BeamAim> aims_;
     std::vector<Eigen::Vector3d> extra_direction_;
-    std::vector<std::optional<raytrace::Hit>> axis_hit_, extra_hit_;
+    std::vector<ProbeHit> axis_hit_, extra_hit_;
     std::uint64_t rays_last_frame_ = 0;
 };
 
