@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include "bench_frames.h"
+#include "hard_cases.h"
 #include "scaling.h"
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/sensor_model/frame_renderer.h"
@@ -209,6 +210,7 @@ nlohmann::json run_benchmarks(const BenchOptions& options) {
     result["accuracy"] = accuracy(scenario, options);
     result["recorded_map"] = recorded_map(options);
     result["scaling"] = scaling(scenario, options);
+    result["hard_cases"] = hard_cases(scenario, options);
     result["pipeline_vs_raw_embree"] = result["pipeline"]["pipeline_vs_raw_embree"];
     // The shipped accuracy: the scenario's own footprint setting is the adaptive default.
     for (const json& s : result["realtime"]["settings"]) {

@@ -20,7 +20,7 @@ struct BenchOptions {
 
 /// Runs every benchmark and returns their figures. Top-level keys: pipeline_vs_raw_embree,
 /// realtime_factor, count_error_pct, and the details under pipeline, realtime, accuracy,
-/// recorded_map, scaling.
+/// recorded_map, scaling, hard_cases.
 nlohmann::json run_benchmarks(const BenchOptions& options);
 
 /// The sensor's own beam rate the real-time factor is measured against: the paper's 150 x 20
