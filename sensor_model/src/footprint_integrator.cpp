@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 
 #include "ladarsim/sensor_model/counter_random.h"
@@ -30,9 +29,9 @@ constexpr std::uint32_t kComplementSamples = 1u << 20;
 /// sub-rays that sampled them.
 const double kSurfaceBend = std::sin(5.0 * std::numbers::pi / 180.0);
 
+/// Two echoes of one object, neighbours in range, on one continuous surface.
 bool same_surface(const SurfaceEcho& a, const SurfaceEcho& b, double gap_m) {
     if (b.range_m - a.range_m <= gap_m) return true;
-    if (a.object_id != b.object_id) return false;
     const Eigen::Vector3d d = b.point_world - a.point_world;
     const double allowed = gap_m + kSurfaceBend * d.norm();
     return std::abs(a.normal_world.cast<double>().dot(d)) <= allowed && std::abs(b.normal_world.cast<double>().dot(d)) <= allowed;
@@ -52,13 +51,20 @@ double tallied(const std::vector<FootprintIntegrator::Tally>& tally, std::uint32
 }  // namespace
 
 std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m) {
-    std::sort(echoes.begin(), echoes.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
+    // One object at a time: a surface is one object's, so that a return always names the object
+    // whose echo made it (ground running into a wall's foot stays ground, the wall stays the wall;
+    // their pulses still merge in the waveform when they overlap).
+    std::sort(echoes.begin(), echoes.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) {
+        return a.object_id != b.object_id ? a.object_id < b.object_id : a.range_m < b.range_m;
+    });
     std::vector<BeamSurface> surfaces;
     for (std::size_t first = 0; first < echoes.size();) {
         std::size_t last = first + 1;
-        while (last < echoes.size() && same_surface(echoes[last - 1], echoes[last], gap_m)) ++last;
+        while (last < echoes.size() && echoes[last].object_id == echoes[first].object_id &&
+               same_surface(echoes[last - 1], echoes[last], gap_m))
+            ++last;
         BeamSurface surface;
-        bool one_object = true;
+        surface.object_id = echoes[first].object_id;
         for (std::size_t k = first; k < last; ++k) {
             surface.weight += echoes[k].weight;
             // A sub-ray stands for its cell of the surface, which reaches about half-way to the
@@ -68,15 +74,6 @@ std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, doubl
             const double after = k + 1 < last ? echoes[k + 1].range_m - echoes[k].range_m : 0.0;
             const double spread = std::max(echoes[k].spread_m, 0.5 * std::max(before, after));
             surface.echoes.push_back({echoes[k].range_m, echoes[k].energy_j, 0, spread});
-            one_object = one_object && echoes[k].object_id == echoes[first].object_id;
-        }
-        surface.object_id = echoes[first].object_id;
-        if (!one_object) {  // rare (objects within the gap of each other): tally per object
-            std::map<std::uint32_t, double> energy_by_object;
-            for (std::size_t k = first; k < last; ++k) energy_by_object[echoes[k].object_id] += echoes[k].energy_j;
-            surface.object_id = std::max_element(energy_by_object.begin(), energy_by_object.end(),
-                                                  [](const auto& a, const auto& b) { return a.second < b.second; })
-                                    ->first;
         }
         surfaces.push_back(std::move(surface));
         first = last;

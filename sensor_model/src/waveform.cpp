@@ -143,17 +143,25 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
             t_cross = t0_s + (static_cast<double>(k - 1) + f) * bin_s_;
         }
         const double t_peak = t0_s + (static_cast<double>(peak) + offset) * bin_s_;
-        // Which surface made it: the largest noise-free contribution at the peak.
-        std::fill(contribution.begin(), contribution.end(), 0.0);
-        for (const Echo& e : echoes) contribution[e.surface] += e.energy_j * shape_of(e).at(t_peak - e.range_m * to_time);
-        std::uint32_t surface = kNoSurface;
-        double best = 0.0;
-        for (std::uint32_t i = 0; i < surfaces; ++i) {
-            if (contribution[i] > best) {
-                best = contribution[i];
-                surface = i;
+        // Which surface made it: the one whose echo sets the range, i.e. the largest noise-free
+        // contribution at the 50 % crossing the range is timed from (a narrow pulse on another
+        // surface's broad pedestal is timed from the pedestal's edge when that edge crosses first).
+        // Where no echo reaches the crossing (noise), the largest at the peak.
+        auto strongest_at = [&](double t) {
+            std::fill(contribution.begin(), contribution.end(), 0.0);
+            for (const Echo& e : echoes) contribution[e.surface] += e.energy_j * shape_of(e).at(t - e.range_m * to_time);
+            std::uint32_t strongest = kNoSurface;
+            double best = 0.0;
+            for (std::uint32_t i = 0; i < surfaces; ++i) {
+                if (contribution[i] > best) {
+                    best = contribution[i];
+                    strongest = i;
+                }
             }
-        }
+            return strongest;
+        };
+        std::uint32_t surface = strongest_at(t_cross);
+        if (surface == kNoSurface) surface = strongest_at(t_peak);
         const double signal = amps_per_watt * power[peak];
         // A peak the echoes barely touch is the noise's, not theirs.
         if (signal < floor_noise) surface = kNoSurface;

@@ -26,13 +26,14 @@ struct SurfaceEcho {
     Eigen::Vector3f normal_world;
 };
 
-/// Groups echoes (sorted here by range) into the distinct surfaces along a beam. Two neighbours in
-/// range are one surface when within `gap_m`, or when they lie on one object's continuous surface:
-/// each within the gap (plus a bend of 5 deg over their separation) of the other's tangent plane
-/// (a surface seen at grazing incidence spans metres in range and would otherwise break into one
-/// return per sub-ray). Each echo's pulse is stretched to reach half-way to its neighbours in
-/// range, so that the result does not depend on how densely the surface was sampled. A surface is
-/// named after the object carrying most of its energy.
+/// Groups echoes (sorted here by object and range) into the distinct surfaces along a beam, each
+/// of one object. Two of its echoes, neighbours in range, are one surface when within `gap_m`, or
+/// when they lie on one continuous surface: each within the gap (plus a bend of 5 deg over their
+/// separation) of the other's tangent plane (a surface seen at grazing incidence spans metres in
+/// range and would otherwise break into one return per sub-ray). Each echo's pulse is stretched to
+/// reach half-way to its neighbours in range, so that the result does not depend on how densely
+/// the surface was sampled. Echoes of different objects are never one surface, however close: their
+/// pulses merge in the waveform, which names a merged return after the object that sets its range.
 std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m);
 
 /// Where one beam points and when it fires.

@@ -29,7 +29,10 @@ struct DetectedPulse {
     double peak_a;           ///< measured peak current (noise included, clipped at saturation)
     double snr;              ///< noise-free signal current at the peak over the noise there
     bool saturated;
-    std::uint32_t surface;   ///< the surface contributing most signal at the peak; kNoSurface for noise
+    /// The surface whose echo sets the range: the one contributing most signal at the 50 %
+    /// crossing the range is timed from (at the peak where none reaches the crossing); kNoSurface
+    /// for noise.
+    std::uint32_t surface;
 };
 
 class WaveformReceiver {
