@@ -56,6 +56,14 @@ public:
     const PulseShape& pulse() const { return pulse_; }
 
 private:
+    /// A stretch of a window where pulses can be detected: its bins and the echoes reaching it.
+    struct LiveSpan {
+        std::size_t first_bin, bins;
+        std::size_t first_echo, echoes;
+    };
+    /// The stretches of a window of `bins` bins from `t0_s` (echoes sorted by range) where the
+    /// signal can cross the threshold.
+    std::vector<LiveSpan> live_spans(std::span<const Echo> echoes, double t0_s, std::size_t bins, bool noisy) const;
     PulseShape shape_of(const Echo& e) const;
     void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
                        std::vector<DetectedPulse>& out) const;
