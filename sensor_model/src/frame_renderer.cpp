@@ -53,12 +53,17 @@ void FrameRenderer::find_neighbours() {
     const int reach_rows = std::min(static_cast<int>(r_max * ellipticity / row_pitch), raster_.rows());
     const int stride_columns = std::max(1, (reach_columns + 7) / 8);
     const int stride_rows = std::max(1, (reach_rows + 7) / 8);
-    for (int dr = -reach_rows / stride_rows * stride_rows; dr <= reach_rows; dr += stride_rows) {
-        for (int dc = -reach_columns / stride_columns * stride_columns; dc <= reach_columns; dc += stride_columns) {
+    // Beyond the footprint, a ring of sentinels one (thinned) pitch wide: something they meet may
+    // reach into the footprint's rim where no probe inside does.
+    const double sentinel_reach = r_max + std::max(stride_columns * column_pitch, stride_rows * row_pitch / ellipticity);
+    const int sentinel_columns = std::min(static_cast<int>(sentinel_reach / column_pitch), raster_.columns());
+    const int sentinel_rows = std::min(static_cast<int>(sentinel_reach * ellipticity / row_pitch), raster_.rows());
+    for (int dr = -sentinel_rows / stride_rows * stride_rows; dr <= sentinel_rows; dr += stride_rows) {
+        for (int dc = -sentinel_columns / stride_columns * stride_columns; dc <= sentinel_columns; dc += stride_columns) {
             if (dr == 0 && dc == 0) continue;
             // Columns count to the right and rows down; offsets are positive left and up.
             const double x = -dc * column_pitch, y = -dr * row_pitch / ellipticity;
-            if (x * x + y * y <= r_max * r_max) neighbours_.push_back({dr, dc, x, y, integrator_.irradiance(x, y)});
+            if (x * x + y * y <= sentinel_reach * sentinel_reach) neighbours_.push_back({dr, dc, x, y, integrator_.irradiance(x, y)});
         }
     }
     // Where no neighbour reaches half-way to the footprint's edge in some direction (the raster's
@@ -74,6 +79,7 @@ void FrameRenderer::find_neighbours() {
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = column + n.d_column;
                 if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
+                if (n.x_rad * n.x_rad + n.y_rad * n.y_rad > r_max * r_max) continue;  // a sentinel
                 for (int k = 0; k < 4; ++k)
                     if (Eigen::Vector2d(n.x_rad, n.y_rad).dot(extra_offsets_[k].normalized()) >= 0.5 * r_max)
                         covered |= static_cast<std::uint8_t>(1u << k);

@@ -44,7 +44,8 @@ public:
     raytrace::TracedScene& traced() { return traced_; }
 
 private:
-    /// A neighbouring beam whose axis falls inside a beam's footprint: raster steps and offset.
+    /// A neighbouring beam whose axis falls inside a beam's footprint (or just beyond it, a
+    /// sentinel): raster steps and offset.
     struct Neighbour {
         int d_row, d_column;
         double x_rad, y_rad;
