@@ -20,26 +20,27 @@ constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays
 constexpr double kSmallObjectFootprints = 8.0;
 /// Where the sampling of the part of the footprint left to the background starts its draws, so
 /// that they never repeat those of a target's region in the same beam.
-constexpr std::uint32_t kComplementSamples = 1u << 23;
+constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's cell numbers
 
-/// A refined region starts as 4 x 4 cells of equal energy; a cell splits in two along an axis
-/// (or in four), up to 8 times along each (1024 cells a side: a sliver of an edge holding 0.1 % of
-/// the beam is resolved), and a region traces at most this many sub-rays.
-constexpr int kBaseCells = 4;
+/// A refined region starts as base x base cells of equal energy (2 x 2 for a whole footprint, whose
+/// probes already tell where its edges are; 4 x 4 for a target's outline); a cell splits in two
+/// along an axis (or in four), up to 8 times along each (a whole footprint's sliver holding 0.1 %
+/// of the beam is resolved), and a region traces at most this many sub-rays.
 constexpr int kMaxSplits = 8;
 constexpr std::size_t kMaxRegionSamples = 2048;
+constexpr int kFootprintBase = 2;
+constexpr int kOutlineBase = 4;
 /// Random-draw numbers of the cells: every (splits along x, splits along y, i, j) its own.
-constexpr std::uint32_t cells_along(int splits) { return static_cast<std::uint32_t>(kBaseCells) << splits; }
-constexpr std::uint32_t first_cell_number(int splits_x, int splits_y) {
+constexpr std::uint32_t cells_along(int base, int splits) { return static_cast<std::uint32_t>(base) << splits; }
+constexpr std::uint32_t first_cell_number(int base, int splits_x, int splits_y) {
     std::uint32_t n = 0;
     for (int a = 0; a <= kMaxSplits; ++a)
         for (int b = 0; b <= kMaxSplits; ++b) {
             if (a == splits_x && b == splits_y) return n;
-            n += cells_along(a) * cells_along(b);
+            n += cells_along(base, a) * cells_along(base, b);
         }
     return n;
 }
-constexpr std::uint32_t kCellNumbers = first_cell_number(kMaxSplits + 1, 0);
 /// The error bound a refinement stops at, in standard deviations of its estimate.
 constexpr double kConfidenceSigmas = 3.0;
 /// Two sub-rays on one surface whose reflectances differ by more than this factor straddle a change
@@ -66,6 +67,7 @@ struct Seen {
     SurfaceEcho echo{0.0, 0.0, 0.0, 0.0, 0, Eigen::Vector3d::Zero(), Eigen::Vector3f::Zero(), 0};
     std::uint64_t volumes = 0;   ///< which media it crossed (one bit per object id modulo 64)
     float reflectance = 0.0f;
+    float cos_incidence = 1.0f;
 };
 
 /// Whether two sub-rays (or a probe and a sub-ray) can sit in one cell of a smooth integrand: both
@@ -163,10 +165,14 @@ struct FootprintIntegrator::Region {
     std::vector<Node> nodes;  ///< the base cells first, then children, four (or two) together
     std::vector<VolumeEcho> volume_echoes;
     std::vector<AdoptedProbe> probes;
+    /// The witnesses' places in the CDF square and what they met, worked out once.
+    std::vector<double> witness_u, witness_v;
+    std::vector<Seen> witness_seen;
     bool media = false;       ///< sub-rays look into volume media (probes do not: never adopted)
     /// The region is an object's outline: its border is the object's edge somewhere along it, so a
     /// cell on the border whose sub-ray met the object may hold an edge of it.
     bool outline = false;
+    int base = kFootprintBase;  ///< cells along each axis to start
     double scale = 1.0;       ///< weights as carried: share / kept weight, or 1
 
     void reset(const Footprint& footprint, const FootprintRect& r, const std::optional<FootprintRect>& without, double share_of_beam,
@@ -174,7 +180,11 @@ struct FootprintIntegrator::Region {
         nodes.clear();
         volume_echoes.clear();
         probes.clear();
+        witness_u.clear();
+        witness_v.clear();
+        witness_seen.clear();
         outline = false;
+        base = kFootprintBase;
         rect = r;
         excluded = without;
         share = share_of_beam;
@@ -185,7 +195,7 @@ struct FootprintIntegrator::Region {
         cdf_dy = footprint.axis_cdf(r.y_hi) - cdf_y0;
     }
     std::uint32_t number(const Node& n) const {
-        return first_sample + first_cell_number(n.splits_x, n.splits_y) + n.i * cells_along(n.splits_y) + n.j;
+        return first_sample + first_cell_number(base, n.splits_x, n.splits_y) + n.i * cells_along(base, n.splits_y) + n.j;
     }
     /// Fills a node's sub-ray at (u, v) and its weight.
     void place(const Footprint& footprint, Node& n, double u, double v) const {
@@ -201,8 +211,8 @@ struct FootprintIntegrator::Region {
     /// The leaf holding CDF-square point (u, v), or null outside the square.
     const Node* leaf_at(double u, double v) const {
         if (!(u >= 0.0 && u < 1.0 && v >= 0.0 && v < 1.0)) return nullptr;
-        const Node* n = &nodes[static_cast<std::size_t>(std::min(static_cast<int>(u * kBaseCells), kBaseCells - 1) * kBaseCells +
-                                                        std::min(static_cast<int>(v * kBaseCells), kBaseCells - 1))];
+        const Node* n = &nodes[static_cast<std::size_t>(std::min(static_cast<int>(u * base), base - 1) * base +
+                                                        std::min(static_cast<int>(v * base), base - 1))];
         while (!n->leaf()) {
             const int a = (n->split & 1) && u >= 0.5 * (n->u0 + n->u1) ? 1 : 0;
             const int b = (n->split & 2) && v >= 0.5 * (n->v0 + n->v1) ? 1 : 0;
@@ -357,6 +367,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     if (targets) {
         target_region.reset(footprint_, *targets, std::nullopt, 0.0, 0);
         target_region.outline = true;
+        target_region.base = kOutlineBase;
         Region* const first[] = {&target_region};
         refine(aim, first, witnesses, media, frame, out);
         double sampled = 0.0;
@@ -406,13 +417,13 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
     };
     for (Region* r : regions) {
         r->media = media;
-        for (int i = 0; i < kBaseCells; ++i) {
-            for (int j = 0; j < kBaseCells; ++j) {
+        for (int i = 0; i < r->base; ++i) {
+            for (int j = 0; j < r->base; ++j) {
                 Region::Node n{};
-                n.u0 = double(i) / kBaseCells;
-                n.u1 = double(i + 1) / kBaseCells;
-                n.v0 = double(j) / kBaseCells;
-                n.v1 = double(j + 1) / kBaseCells;
+                n.u0 = double(i) / r->base;
+                n.u1 = double(i + 1) / r->base;
+                n.v0 = double(j) / r->base;
+                n.v1 = double(j + 1) / r->base;
                 n.i = static_cast<std::uint32_t>(i);
                 n.j = static_cast<std::uint32_t>(j);
                 place(*r, n);
@@ -469,7 +480,7 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
             try_edge = false;
             out.surface.resize(fixed_surface);
             out.volume = fixed_volume;
-            if (straight_edge(aim, witnesses, out)) break;
+            if (regions.size() == 1 && straight_edge(aim, witnesses, out, regions.front())) break;
         }
         // Split the marked leaves along the axes they disagree across: two children (or four),
         // the one holding the parent's jittered sub-ray reusing it.
@@ -695,23 +706,41 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
         }
         // Probes inside the region: a probe that met something its cell's sub-ray did not (an
         // edge's sliver between sub-rays) makes that cell uncertain by the probe's echo.
-        for (const Probe* p : witnesses) {
+        for (std::size_t w = 0; w < witnesses.size(); ++w) {
+            const Probe* p = witnesses[w];
             if (r.excluded && footprint_.contains(*r.excluded, p->x_rad, p->y_rad)) continue;
             if (!footprint_.within_truncation(p->x_rad, p->y_rad)) continue;
-            const double pu = (footprint_.axis_cdf(p->x_rad) - r.cdf_x0) / r.cdf_dx;
-            const double pv = (footprint_.axis_cdf(p->y_rad) - r.cdf_y0) / r.cdf_dy;
+            if (r.witness_u.size() != witnesses.size()) {
+                // Where each probe lies in the region and what it met, once per region.
+                r.witness_u.resize(witnesses.size());
+                r.witness_v.resize(witnesses.size());
+                r.witness_seen.resize(witnesses.size());
+                for (std::size_t q = 0; q < witnesses.size(); ++q) {
+                    const Probe* o = witnesses[q];
+                    if (!footprint_.within_truncation(o->x_rad, o->y_rad)) continue;  // never looked at
+                    r.witness_u[q] = (footprint_.axis_cdf(o->x_rad) - r.cdf_x0) / r.cdf_dx;
+                    r.witness_v[q] = (footprint_.axis_cdf(o->y_rad) - r.cdf_y0) / r.cdf_dy;
+                    Seen& seen = r.witness_seen[q];
+                    seen = Seen{};
+                    if (!*o->hit) continue;
+                    const raytrace::Hit& h = **o->hit;
+                    seen.hit = true;
+                    seen.reflectance = h.reflectance;
+                    // Its echo (an exponential) only when it disagrees, below.
+                    seen.echo = {h.range_m, 1.0, -1.0, 0.0, h.object_id, scenario_.mount.position_world + h.range_m * o->direction_world,
+                                 h.normal_world, 0};
+                }
+            }
+            const double pu = r.witness_u[w], pv = r.witness_v[w];
             const Region::Node* leaf = r.leaf_at(pu, pv);
             if (!leaf || !leaf->kept) continue;
-            Seen probe;
-            if (*p->hit) {
+            r.witness_seen[w].volumes = leaf->seen.volumes;  // probes do not look into media
+            if (agree(leaf->seen, r.witness_seen[w], gap)) continue;
+            if (r.witness_seen[w].hit && r.witness_seen[w].echo.energy_j < 0.0) {
                 const raytrace::Hit& h = **p->hit;
-                probe.hit = true;
-                probe.reflectance = h.reflectance;
-                probe.echo = {h.range_m, 1.0, echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0), 0.0, h.object_id,
-                              scenario_.mount.position_world + h.range_m * p->direction_world, h.normal_world, 0};
+                r.witness_seen[w].echo.energy_j = echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0);
             }
-            probe.volumes = leaf->seen.volumes;  // probes do not look into media
-            if (agree(leaf->seen, probe, gap)) continue;
+            const Seen& probe = r.witness_seen[w];
             Region::Node& n = r.nodes[static_cast<std::size_t>(leaf - r.nodes.data())];
             // The probe's surface, if some sub-ray found it; else a return not seen yet.
             std::int32_t probe_surface = -1;
@@ -818,7 +847,8 @@ double cap_share(double d, double r, double sigma) {
 
 }  // namespace
 
-bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out) const {
+bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
+                                        const Region* sampled) const {
     const double gap = scenario_.sensor.receiver.return_gap_m;
     const double r_max = footprint_.max_offset_rad();
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
@@ -836,9 +866,13 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         if (!hit) return seen;
         seen.hit = true;
         seen.reflectance = hit->reflectance;
-        seen.echo = {hit->range_m, 1.0, echo_energy_j(1.0, hit->reflectance, hit->cos_incidence, hit->range_m, 1.0), 0.0,
-                     hit->object_id, origin + hit->range_m * direction, hit->normal_world, 0};
+        seen.cos_incidence = hit->cos_incidence;
+        // Its echo (an exponential) only where it is used.
+        seen.echo = {hit->range_m, 1.0, -1.0, 0.0, hit->object_id, origin + hit->range_m * direction, hit->normal_world, 0};
         return seen;
+    };
+    auto energy_of = [&](const Seen& s) {
+        return s.echo.energy_j >= 0.0 ? s.echo.energy_j : echo_energy_j(1.0, s.reflectance, s.cos_incidence, s.echo.range_m, 1.0);
     };
     auto trace_offsets = [&](std::span<const Eigen::Vector2d> offsets, std::vector<Seen>& seen) {
         rays.resize(offsets.size());
@@ -851,7 +885,7 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         }
         traced_.trace(rays, hits);
         out.rays += static_cast<int>(offsets.size());
-        seen.resize(offsets.size());
+        if (seen.size() < offsets.size()) seen.resize(offsets.size());  // never shrunk: no re-construction
         for (std::size_t i = 0; i < offsets.size(); ++i) seen[i] = seen_of(hits[i], rays[i].direction);
     };
     // Two surfaces (one may be nothing), each represented by its first point.
@@ -871,8 +905,8 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
 
     // The rim of the footprint, just inside its truncation, where an edge crossing it enters and
     // leaves; then the probes inside, which the edge must separate.
-    constexpr int kRim = 24;
-    constexpr int kBisections = 7;
+    constexpr int kRim = 12;
+    constexpr int kBisections = 5;
     const double rim = 0.999 * r_max;
     thread_local std::vector<Eigen::Vector2d> offsets;
     thread_local std::vector<Seen> seen;
@@ -949,12 +983,30 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         if ((along > 0.0) != (q.side == cap_side)) return false;
     }
     // Each surface takes its share of the beam (exact for a straight edge), spread over the
-    // plane-patch quadrature's equal-energy nodes on its side (each must find that surface); a
-    // sliver holding none takes the mean of its points, weighted by the beam's irradiance.
+    // equal-energy cells on its side (the sampled region's, or the plane-patch quadrature's), each
+    // of which must find that surface; a sliver holding none takes the mean of its points,
+    // weighted by the beam's irradiance.
     const double cap = cap_share(distance, r_max, 0.5 * footprint_.waist_rad());
+    thread_local std::vector<double> node_weight;
     offsets.clear();
-    for (std::size_t k = 0; k < quadrature_x_.size(); ++k) offsets.emplace_back(quadrature_x_[k], quadrature_y_[k]);
-    trace_offsets(offsets, seen);
+    node_weight.clear();
+    std::size_t sampled_cells = 0;
+    if (sampled)
+        for (const Region::Node& n : sampled->nodes) sampled_cells += n.leaf() && n.kept && n.weight > 0.0;
+    if (sampled_cells >= quadrature_x_.size()) {
+        if (seen.size() < sampled_cells) seen.resize(sampled_cells);
+        for (const Region::Node& n : sampled->nodes) {
+            if (!n.leaf() || !n.kept || n.weight <= 0.0) continue;
+            seen[offsets.size()] = n.seen;
+            offsets.emplace_back(n.x_rad, n.y_rad);
+            node_weight.push_back(n.weight);
+        }
+    } else {
+        for (std::size_t k = 0; k < quadrature_x_.size(); ++k) offsets.emplace_back(quadrature_x_[k], quadrature_y_[k]);
+        trace_offsets(offsets, seen);
+        node_weight.assign(offsets.size(), 1.0);
+    }
+    std::array<double, 2> weight_on{0.0, 0.0};
     std::array<int, 2> nodes_on{0, 0};
     thread_local std::vector<int> node_side;
     node_side.assign(offsets.size(), -1);
@@ -963,18 +1015,20 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         const int side = side_of(seen[k]);
         if (side < 0) return false;
         if (std::abs(along) >= margin && (along > 0.0) != (side == cap_side)) return false;
-        node_side[k] = along > 0.0 ? cap_side : 1 - cap_side;
+        node_side[k] = side;  // by what it met: within the margin, the chord may pass either way
+        weight_on[static_cast<std::size_t>(node_side[k])] += node_weight[k];
         ++nodes_on[static_cast<std::size_t>(node_side[k])];
     }
     for (int side = 0; side < 2; ++side) {
         if (nodes_on[static_cast<std::size_t>(side)] == 0) continue;
         if (!surface[static_cast<std::size_t>(side)]->hit) continue;
-        const double share = (side == cap_side ? cap : 1.0 - cap) / nodes_on[static_cast<std::size_t>(side)];
+        const double share = (side == cap_side ? cap : 1.0 - cap) / weight_on[static_cast<std::size_t>(side)];
         for (std::size_t k = 0; k < offsets.size(); ++k) {
             if (node_side[k] != side || !seen[k].hit) continue;
             SurfaceEcho e = seen[k].echo;
-            e.weight = share;
-            e.energy_j *= share;
+            e.weight = share * node_weight[k];
+            e.energy_j = energy_of(seen[k]) * e.weight;
+            e.sample = 0;
             out.surface.push_back(e);
         }
     }
@@ -988,7 +1042,7 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
             if (q.side != side) continue;
             const double g = irradiance(q.offset.x(), q.offset.y());
             g_sum += g;
-            e_sum += g * q.seen.echo.energy_j;
+            e_sum += g * energy_of(q.seen);
             r_sum += g * q.seen.echo.range_m;
             r2_sum += g * q.seen.echo.range_m * q.seen.echo.range_m;
             if (!nearest || q.offset.squaredNorm() < nearest->offset.squaredNorm()) nearest = &q;
@@ -999,6 +1053,7 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         e.range_m = range;
         e.weight = share;
         e.energy_j = share * e_sum / g_sum;
+        e.sample = 0;
         e.spread_m = std::sqrt(std::max(0.0, r2_sum / g_sum - range * range));
         out.surface.push_back(e);
     }

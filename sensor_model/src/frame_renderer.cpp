@@ -53,9 +53,9 @@ void FrameRenderer::find_neighbours() {
     const int reach_rows = std::min(static_cast<int>(r_max * ellipticity / row_pitch), raster_.rows());
     const int stride_columns = std::max(1, (reach_columns + 7) / 8);
     const int stride_rows = std::max(1, (reach_rows + 7) / 8);
-    // Beyond the footprint, a ring of sentinels one (thinned) pitch wide: something they meet may
-    // reach into the footprint's rim where no probe inside does.
-    const double sentinel_reach = r_max + std::max(stride_columns * column_pitch, stride_rows * row_pitch / ellipticity);
+    // Beyond the footprint, a ring of sentinels one (thinned) pitch of the denser axis wide:
+    // something they meet may reach into the footprint's rim where no probe inside does.
+    const double sentinel_reach = r_max + std::min(stride_columns * column_pitch, stride_rows * row_pitch / ellipticity);
     const int sentinel_columns = std::min(static_cast<int>(sentinel_reach / column_pitch), raster_.columns());
     const int sentinel_rows = std::min(static_cast<int>(sentinel_reach * ellipticity / row_pitch), raster_.rows());
     for (int dr = -sentinel_rows / stride_rows * stride_rows; dr <= sentinel_rows; dr += stride_rows) {

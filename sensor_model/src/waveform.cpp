@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kWindowSigmas = 6.0;  // pulse tails kept on each side of a cluster of echoes
 constexpr std::size_t kNoiseBank = std::size_t{1} << 18;  // samples: 33 us of receiver noise
+constexpr std::size_t kShortWindow = 2048;  // bins (38 m): built whole, cheaper than bounding it
 
 }  // namespace
 
@@ -57,8 +58,15 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
     std::sort(sorted.begin(), sorted.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
     std::vector<DetectedPulse> pulses;
     const double to_time = 2.0 / kSpeedOfLight_mps;
-    double widest = pulse_.sigma_s;
-    for (const Echo& e : sorted) widest = std::max(widest, shape_of(e).sigma_s);
+    double widest = pulse_.sigma_s, peaks = 0.0;
+    for (const Echo& e : sorted) {
+        const PulseShape shape = shape_of(e);
+        widest = std::max(widest, shape.sigma_s);
+        peaks += e.energy_j * shape.peak_per_joule();
+    }
+    // Even with every pulse's peak at one instant the signal stays below the threshold: nothing to
+    // detect (what noise alone crosses is the false-alarm process).
+    if (reach_a(peaks, noise != nullptr) <= apd_.threshold_a()) return pulses;
     const double margin_s = kWindowSigmas * widest;
     for (std::size_t first = 0; first < sorted.size();) {
         std::size_t last = first + 1;
@@ -66,12 +74,21 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
         const double t0 = sorted[first].range_m * to_time - margin_s;
         const double t1 = sorted[last - 1].range_m * to_time + margin_s;
         const auto bins = static_cast<std::size_t>(std::ceil((t1 - t0) / bin_s_)) + 1;
-        for (const LiveSpan& live : live_spans(std::span(sorted).subspan(first, last - first), t0, bins, noise != nullptr))
-            detect_window(std::span(sorted).subspan(first + live.first_echo, live.echoes), t0 + live.first_bin * bin_s_,
-                          live.bins, noise, pulses);
+        // A long window (a grazing footprint's) is built only where pulses can be detected.
+        if (bins <= kShortWindow) {
+            detect_window(std::span(sorted).subspan(first, last - first), t0, bins, noise, pulses);
+        } else {
+            for (const LiveSpan& live : live_spans(std::span(sorted).subspan(first, last - first), t0, bins, noise != nullptr))
+                detect_window(std::span(sorted).subspan(first + live.first_echo, live.echoes), t0 + live.first_bin * bin_s_,
+                              live.bins, noise, pulses);
+        }
         first = last;
     }
     return pulses;
+}
+
+double WaveformReceiver::reach_a(double power_w, bool noisy) const {
+    return apd_.amps_per_watt() * power_w + (noisy ? 2.0 * apd_.noise_a(power_w) : 0.0);
 }
 
 std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<const Echo> echoes, double t0_s, std::size_t bins,
@@ -94,9 +111,18 @@ std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<c
     };
     static const std::array<double, 6> kStairs = {1.0, std::exp(-0.5), std::exp(-2.0), std::exp(-4.5), std::exp(-8.0), std::exp(-12.5)};
     static_assert(kWindowSigmas == 6.0);
-    for (const Echo& e : echoes) {
-        const PulseShape shape = shape_of(e);
-        const double te = e.range_m * to_time, peak = e.energy_j * shape.peak_per_joule();
+    thread_local std::vector<double> reach_begin, reach_end;
+    reach_begin.resize(echoes.size());
+    reach_end.resize(echoes.size());
+    for (std::size_t i = 0; i < echoes.size(); ++i) {
+        const PulseShape shape = shape_of(echoes[i]);
+        const double te = echoes[i].range_m * to_time, peak = echoes[i].energy_j * shape.peak_per_joule();
+        reach_begin[i] = te - kWindowSigmas * shape.sigma_s;
+        reach_end[i] = te + kWindowSigmas * shape.sigma_s;
+        if (reach_end[i] - reach_begin[i] <= coarse_s) {
+            add(reach_begin[i], reach_end[i], peak);  // within a coarse bin or two: its peak bounds it
+            continue;
+        }
         for (int k = 0; k < 6; ++k) {
             const double value = peak * kStairs[static_cast<std::size_t>(k)];
             add(te + k * shape.sigma_s, te + (k + 1) * shape.sigma_s, value);
@@ -105,13 +131,12 @@ std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<c
     }
     for (std::size_t c = 1; c < coarse; ++c) bound[c] += bound[c - 1];
 
-    // Only where the signal (with two noise sigmas, when noisy) can reach half the threshold can a
+    // Only where the signal (with two noise sigmas, when noisy: reach_a) can reach half the threshold can a
     // pulse's excursion be (it starts above the threshold and ends below half of it); a stretch
     // that never reaches the threshold itself holds no pulse. Elsewhere the waveform is not built:
     // a noise-free one would be below the release level there, and a noisy one crosses the
     // threshold at the rate of noise alone, which the false-alarm process already draws.
-    const double amps_per_watt = apd_.amps_per_watt();
-    auto reach = [&](double power_w) { return amps_per_watt * power_w + (noisy ? 2.0 * apd_.noise_a(power_w) : 0.0); };
+    auto reach = [&](double power_w) { return reach_a(power_w, noisy); };
     const double release = 0.5 * apd_.threshold_a(), threshold = apd_.threshold_a();
     std::vector<LiveSpan> spans;
     for (std::size_t c = 0; c < coarse;) {
@@ -131,8 +156,7 @@ std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<c
             std::size_t first = 0, last = 0;
             bool any = false;
             for (std::size_t i = 0; i < echoes.size(); ++i) {
-                const double te = echoes[i].range_m * to_time, reach_s = kWindowSigmas * shape_of(echoes[i]).sigma_s;
-                if (te + reach_s < s0 || te - reach_s > s1) continue;
+                if (reach_end[i] < s0 || reach_begin[i] > s1) continue;
                 if (!any) first = i;
                 last = i + 1;
                 any = true;
@@ -181,7 +205,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     std::vector<double> y(bins);
     const double saturation = apd_.saturation_a();
     for (std::size_t k = 0; k < bins; ++k)
-        y[k] = std::min(amps_per_watt * power[k] + apd_.noise_a(power[k]) * n[k], saturation);
+        y[k] = std::min(amps_per_watt * power[k] + (noise ? apd_.noise_a(power[k]) * n[k] : 0.0), saturation);
 
     const double threshold = apd_.threshold_a();
     const double floor_noise = apd_.noise_floor_a();

@@ -245,7 +245,7 @@ TEST_CASE("straight edges of an extended object: no beam missing, every energy w
             const double full = extended_target_photoelectrons(s.sensor, reflectance, cos_axis, distance_m / cos_axis);
             const double want = reference.contains(key) ? reference.at(key) : 0.0;
             const double got = adaptive.contains(key) ? adaptive.at(key) : 0.0;
-            INFO("row " << b.row << " column " << b.column << ": " << got / full << " of a full echo, reference " << want / full);
+            INFO("row " << b.row << " column " << b.column << " (beam " << b.row * geometry.raster().columns() + step << "): " << got / full << " of a full echo, reference " << want / full);
             if (want > 5.0 * threshold_pe) CHECK(got > 0.0);
             CHECK(std::abs(got - want) / full <= 0.02);
             edge_beams += want > 0.001 * full && want < 0.999 * full;

@@ -69,8 +69,8 @@ struct BeamEchoes {
 ///    whether the footprint lies on one plane, then integrated without rays; objects small enough
 ///    to hide between probes, or moving, are found by testing the beam's cone against their
 ///    bounding spheres and sampled only inside the part of the footprint they can occupy; media are
-///    sampled only where the cone meets them. Where sampling is needed, cells of equal energy (4 x 4
-///    to start) split, along the axis across which they disagree, where neighbouring sub-rays, or a
+///    sampled only where the cone meets them. Where sampling is needed, cells of equal energy (2 x 2
+///    to start, 4 x 4 in a target's outline) split, along the axis across which they disagree, where neighbouring sub-rays, or a
 ///    probe and the sub-ray of its cell, disagree (another object, another surface, nothing, another
 ///    medium, or half the echo), until what the receiver reports is settled: each return's energy known to
 ///    `footprint_tolerance` of itself, or of its (stretched) pulse's threshold when weaker
@@ -91,7 +91,7 @@ public:
     /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
     void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
 
-    /// One rectangle of the footprint being refined, with its quadtree (defined in the .cpp).
+    /// One rectangle of the footprint being refined, with its tree of cells (defined in the .cpp).
     struct Region;
 
 private:
@@ -115,9 +115,12 @@ private:
     /// The footprint as two surfaces (one may be nothing) parted by one straight edge: the rim of
     /// the footprint is sampled for the edge's two ends (each then bisected), every probe must lie
     /// on its surface's side of the chord between them, and each surface takes the beam's exact
-    /// share beyond or before the chord (a closed form of the truncated Gaussian). False (and
-    /// nothing appended) where that does not hold: a corner, a curved edge, more surfaces.
-    bool straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out) const;
+    /// share beyond or before the chord (a closed form of the truncated Gaussian), spread over the
+    /// cells of `sampled` (a whole footprint's first cells, when there are enough) or the
+    /// plane-patch quadrature on its side. False (and nothing appended) where that does not hold:
+    /// a corner, a curved edge, more surfaces.
+    bool straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
+                       const Region* sampled = nullptr) const;
     double echo_energy_j(double weight, double reflectance, double cos_incidence, double range_m, double fog) const;
     /// Echo energy at which a pulse stretched by a range spread of `spread_m` peaks at the threshold.
     double threshold_energy_j(double spread_m) const;

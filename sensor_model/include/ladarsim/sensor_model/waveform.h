@@ -64,6 +64,9 @@ private:
     /// The stretches of a window of `bins` bins from `t0_s` (echoes sorted by range) where the
     /// signal can cross the threshold.
     std::vector<LiveSpan> live_spans(std::span<const Echo> echoes, double t0_s, std::size_t bins, bool noisy) const;
+    /// The most the waveform's current can reach with `power_w` of signal: the signal plus two
+    /// noise sigmas when noisy (a pulse needs more than the threshold to be detected).
+    double reach_a(double power_w, bool noisy) const;
     PulseShape shape_of(const Echo& e) const;
     void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
                        std::vector<DetectedPulse>& out) const;
