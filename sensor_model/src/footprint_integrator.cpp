@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kMradToRad = 1e-3;
 constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays)
+constexpr int kEdgeQuadrature = 8;  // sub-rays spreading each side of a straight edge's share
 /// Objects subtending less than this many footprint radii can hide between the probes or cover a
 /// part of a footprint no probe sees: they are tested against each beam's cone and sampled.
 constexpr double kSmallObjectFootprints = 8.0;
@@ -25,9 +26,10 @@ constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's ce
 /// A refined region starts as base x base cells of equal energy (2 x 2 for a whole footprint, whose
 /// probes already tell where its edges are; 4 x 4 for a target's outline); a cell splits in two
 /// along an axis (or in four), up to 8 times along each (a whole footprint's sliver holding 0.1 %
-/// of the beam is resolved), and a region traces at most this many sub-rays.
+/// of the beam is resolved), and a region traces at most so many sub-rays.
 constexpr int kMaxSplits = 8;
-constexpr std::size_t kMaxRegionSamples = 2048;
+constexpr std::size_t kFootprintSamples = 256;  ///< a whole footprint's (a recorded map's grazing one)
+constexpr std::size_t kOutlineSamples = 1024;   ///< a target's outline
 constexpr int kFootprintBase = 2;
 constexpr int kOutlineBase = 4;
 /// Random-draw numbers of the cells: every (splits along x, splits along y, i, j) its own.
@@ -173,6 +175,7 @@ struct FootprintIntegrator::Region {
     /// cell on the border whose sub-ray met the object may hold an edge of it.
     bool outline = false;
     int base = kFootprintBase;  ///< cells along each axis to start
+    std::size_t max_samples = kFootprintSamples;
     double scale = 1.0;       ///< weights as carried: share / kept weight, or 1
 
     void reset(const Footprint& footprint, const FootprintRect& r, const std::optional<FootprintRect>& without, double share_of_beam,
@@ -185,6 +188,7 @@ struct FootprintIntegrator::Region {
         witness_seen.clear();
         outline = false;
         base = kFootprintBase;
+        max_samples = kFootprintSamples;
         rect = r;
         excluded = without;
         share = share_of_beam;
@@ -243,6 +247,9 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
         quadrature_x_.push_back(s.offset_x_rad);
         quadrature_y_.push_back(s.offset_y_rad);
     }
+    std::vector<SubRay> edge_nodes(kEdgeQuadrature);
+    Footprint(footprint_.waist_rad() * 2.0, kEdgeQuadrature, scenario.render.footprint_truncation).fixed(edge_nodes);
+    for (const SubRay& s : edge_nodes) edge_quadrature_.emplace_back(s.offset_x_rad, s.offset_y_rad);
 }
 
 Eigen::Vector2d FootprintIntegrator::offset_of(const Eigen::Vector3d& v) const {
@@ -368,6 +375,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         target_region.reset(footprint_, *targets, std::nullopt, 0.0, 0);
         target_region.outline = true;
         target_region.base = kOutlineBase;
+        target_region.max_samples = kOutlineSamples;
         Region* const first[] = {&target_region};
         refine(aim, first, witnesses, media, frame, out);
         double sampled = 0.0;
@@ -487,7 +495,7 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
         bool any = false;
         for (Region* r : regions) {
             const std::size_t leaves = r->nodes.size();
-            for (std::size_t k = 0; k < leaves && r->nodes.size() + 4 <= kMaxRegionSamples; ++k) {
+            for (std::size_t k = 0; k < leaves && r->nodes.size() + 4 <= r->max_samples; ++k) {
                 const Region::Node parent = r->nodes[k];
                 const std::uint8_t axes = parent.want & ((parent.splits_x < kMaxSplits ? 1 : 0) | (parent.splits_y < kMaxSplits ? 2 : 0));
                 if (!parent.leaf() || !parent.urgent || axes == 0) continue;
@@ -600,7 +608,42 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
     // The returns as they stand: each surface's energy and range spread, and so the energy at
     // which its pulse reaches the threshold.
     thread_local std::vector<std::uint32_t> surface_of_echo;
-    const std::vector<BeamSurface> surfaces = gather_surfaces(echoes, gap, &surface_of_echo);
+    std::vector<BeamSurface> surfaces = gather_surfaces(echoes, gap, &surface_of_echo);
+    {
+        // What the receiver tells apart: surfaces whose echoes overlap in range, or come closer than
+        // the pulse's length, make one pulse in the waveform. A cell shared by two of them changes
+        // nothing the receiver reports, so they are judged as one return.
+        const double resolution = 0.5 * kSpeedOfLight_mps * scenario_.sensor.transmitter.pulse_width_ns * 1e-9;
+        thread_local std::vector<std::pair<double, double>> extent;
+        thread_local std::vector<std::uint32_t> order, merged;
+        extent.resize(surfaces.size());
+        order.resize(surfaces.size());
+        for (std::size_t g = 0; g < surfaces.size(); ++g) {
+            double lo = surfaces[g].echoes.front().range_m, hi = lo;
+            for (const Echo& e : surfaces[g].echoes) {
+                lo = std::min(lo, e.range_m - e.spread_m);
+                hi = std::max(hi, e.range_m + e.spread_m);
+            }
+            extent[g] = {lo, hi};
+            order[g] = static_cast<std::uint32_t>(g);
+        }
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return extent[a].first < extent[b].first; });
+        merged.assign(surfaces.size(), 0);
+        std::vector<BeamSurface> clusters;
+        double reach = -1e300;
+        for (const std::uint32_t g : order) {
+            if (clusters.empty() || extent[g].first - reach > resolution) {
+                clusters.emplace_back();
+                reach = extent[g].second;
+            }
+            reach = std::max(reach, extent[g].second);
+            merged[g] = static_cast<std::uint32_t>(clusters.size() - 1);
+            auto& target = clusters.back().echoes;
+            target.insert(target.end(), surfaces[g].echoes.begin(), surfaces[g].echoes.end());
+        }
+        for (std::uint32_t& g : surface_of_echo) g = merged[g];
+        surfaces = std::move(clusters);
+    }
     const std::size_t returns = surfaces.size() + volumes.size();
     thread_local std::vector<double> energy, variance, threshold;
     energy.assign(returns, 0.0);
@@ -695,10 +738,20 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
                 if (m_side < n_side || (m_side == n_side && (side == 1 || side == 3))) continue;
                 if (agree(n.seen, m->seen, gap)) continue;
                 Region::Node& other = r.nodes[static_cast<std::size_t>(m - r.nodes.data())];
+                const std::uint8_t across = across_x ? 1 : 2, along = across_x ? 2 : 1;
+                if (n.surface >= 0 && n.surface == other.surface && n.seen.volumes == other.seen.volumes) {
+                    // Two surfaces within one return (discs of a map, leaves and ground at one
+                    // range): only their echoes' difference moves its energy.
+                    const double de = std::abs(n.seen.echo.energy_j - other.seen.echo.energy_j);
+                    add_uncertainty(n, n.surface, n.weight * r.scale * de);
+                    add_uncertainty(other, n.surface, other.weight * r.scale * de);
+                    if (n.boundary) n.want |= across;
+                    if (other.boundary) other.want |= across;
+                    continue;
+                }
                 involve(r, n, other.seen, other.surface, other.volume_first, other.volume_count);
                 involve(r, other, n.seen, n.surface, n.volume_first, n.volume_count);
                 // Both split across the edge between them; the one coarser along it, along it too.
-                const std::uint8_t across = across_x ? 1 : 2, along = across_x ? 2 : 1;
                 n.want |= across;
                 other.want |= across;
                 if (m_side > n_side) other.want |= along;
@@ -767,17 +820,35 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
     // Settled when every return's energy is known to the tolerance of itself, or of its pulse's
     // threshold when weaker (below it, errors decide nothing); else refine the cells bounding an
     // unsettled return (or an unseen probe's), while they can be.
-    thread_local std::vector<std::uint8_t> unsettled;
+    thread_local std::vector<std::uint8_t> unsettled, undecided;
     unsettled.assign(returns, 0);
     for (std::size_t g = 0; g < returns; ++g)
         unsettled[g] = kConfidenceSigmas * std::sqrt(variance[g]) > tolerance_ * std::max(energy[g], threshold[g]);
+    // Whether a return is detected at all depends on its pulse's peak, so on how its energy spreads
+    // in range, which its sub-rays sample: with n of them the spread (and so the threshold) is known
+    // to about 1 / sqrt(n). A return that close to its threshold is undecided: all its cells split.
+    undecided.assign(returns, 0);
+    thread_local std::vector<int> samples_of;
+    samples_of.assign(returns, 0);
+    for (Region* r : regions)
+        for (const Region::Node& n : r->nodes)
+            if (n.leaf() && n.surface >= 0) ++samples_of[static_cast<std::size_t>(n.surface)];
+    for (std::size_t g = 0; g < surfaces.size(); ++g) {
+        if (samples_of[g] == 0) continue;
+        const double margin = 1.5 / std::sqrt(2.0 * samples_of[g]);
+        undecided[g] = std::abs(energy[g] - threshold[g]) < margin * threshold[g];
+    }
     bool refinable = false;
     for (Region* r : regions) {
-        if (r->nodes.size() + 4 > kMaxRegionSamples) continue;
+        if (r->nodes.size() + 4 > r->max_samples) continue;
         for (Region::Node& n : r->nodes) {
             if (!n.leaf()) continue;
             for (const std::int32_t t : n.touches)
                 if (t >= 0 && unsettled[static_cast<std::size_t>(t)]) n.urgent = true;
+            if (n.surface >= 0 && undecided[static_cast<std::size_t>(n.surface)]) {
+                n.urgent = true;
+                n.want |= 3;
+            }
             const std::uint8_t axes = n.want & ((n.splits_x < kMaxSplits ? 1 : 0) | (n.splits_y < kMaxSplits ? 2 : 0));
             refinable = refinable || (n.urgent && axes != 0);
         }
@@ -993,7 +1064,7 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
     std::size_t sampled_cells = 0;
     if (sampled)
         for (const Region::Node& n : sampled->nodes) sampled_cells += n.leaf() && n.kept && n.weight > 0.0;
-    if (sampled_cells >= quadrature_x_.size()) {
+    if (sampled_cells >= edge_quadrature_.size()) {
         if (seen.size() < sampled_cells) seen.resize(sampled_cells);
         for (const Region::Node& n : sampled->nodes) {
             if (!n.leaf() || !n.kept || n.weight <= 0.0) continue;
@@ -1002,7 +1073,7 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
             node_weight.push_back(n.weight);
         }
     } else {
-        for (std::size_t k = 0; k < quadrature_x_.size(); ++k) offsets.emplace_back(quadrature_x_[k], quadrature_y_[k]);
+        offsets.assign(edge_quadrature_.begin(), edge_quadrature_.end());
         trace_offsets(offsets, seen);
         node_weight.assign(offsets.size(), 1.0);
     }

@@ -167,7 +167,8 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     return rays.size();
 }
 
-std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::uint64_t& rays) const {
+std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_step, std::uint64_t frame,
+                                               std::uint64_t& rays) const {
     const auto& sensor = scenario_.sensor;
     const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
@@ -176,7 +177,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
     thread_local BeamEchoes echoes;
     std::vector<Return> returns;
 
-    for (int step = 0; step < raster_.columns(); ++step) {
+    for (int step = first_step; step < end_step; ++step) {
         const RasterBeam beam = raster_.beam(row, step);
         const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
         const BeamAim& a = aims_[cell];
@@ -222,9 +223,6 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
             returns.push_back(r);
         }
     }
-    // A triangle sweep fires odd lines right to left; frames list returns by column.
-    std::stable_sort(returns.begin(), returns.end(),
-                     [](const Return& a, const Return& b) { return a.column < b.column; });
     return returns;
 }
 
@@ -281,12 +279,30 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
-    std::vector<std::vector<Return>> by_row(rows);
-    tbb::parallel_for(0, raster_.rows(), [&](int row) {
-        by_row[static_cast<std::size_t>(row)] = trace_row(row, index, rays_by_row[static_cast<std::size_t>(row)]);
+    // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
+    // stretches keep both cores busy.
+    constexpr int kStepsPerTask = 16;
+    const int stretches = (raster_.columns() + kStepsPerTask - 1) / kStepsPerTask;
+    std::vector<std::vector<Return>> by_stretch(rows * static_cast<std::size_t>(stretches));
+    std::vector<std::uint64_t> rays_by_stretch(by_stretch.size(), 0);
+    tbb::parallel_for(0, static_cast<int>(by_stretch.size()), [&](int task) {
+        const int row = task / stretches, first = (task % stretches) * kStepsPerTask;
+        by_stretch[static_cast<std::size_t>(task)] = trace_steps(row, first, std::min(first + kStepsPerTask, raster_.columns()), index,
+                                                                 rays_by_stretch[static_cast<std::size_t>(task)]);
     });
+    std::vector<std::vector<Return>> by_row(rows);
+    for (std::size_t row = 0; row < rows; ++row) {
+        std::vector<Return>& returns = by_row[row];
+        for (int k = 0; k < stretches; ++k) {
+            const auto& piece = by_stretch[row * static_cast<std::size_t>(stretches) + static_cast<std::size_t>(k)];
+            returns.insert(returns.end(), piece.begin(), piece.end());
+        }
+        // A triangle sweep fires odd lines right to left; frames list returns by column.
+        std::stable_sort(returns.begin(), returns.end(), [](const Return& a, const Return& b) { return a.column < b.column; });
+    }
     rays_last_frame_ = 0;
     for (const std::uint64_t r : rays_by_row) rays_last_frame_ += r;
+    for (const std::uint64_t r : rays_by_stretch) rays_last_frame_ += r;
     std::size_t total = 0;
     for (const auto& r : by_row) total += r.size();
     frame.returns.reserve(total);

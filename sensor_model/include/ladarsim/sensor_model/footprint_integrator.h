@@ -117,7 +117,7 @@ private:
     /// on its surface's side of the chord between them, and each surface takes the beam's exact
     /// share beyond or before the chord (a closed form of the truncated Gaussian), spread over the
     /// cells of `sampled` (a whole footprint's first cells, when there are enough) or the
-    /// plane-patch quadrature on its side. False (and nothing appended) where that does not hold:
+    /// equal-energy quadrature on its side. False (and nothing appended) where that does not hold:
     /// a corner, a curved edge, more surfaces.
     bool straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
                        const Region* sampled = nullptr) const;
@@ -136,6 +136,7 @@ private:
     Footprint footprint_;
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;
+    std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
 };
 
 }  // namespace ladarsim::sensor_model
