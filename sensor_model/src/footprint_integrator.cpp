@@ -390,7 +390,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         return;
     }
     if (media) {
+        // Probes do not look into media: a cloud's sliver shows only to the sub-rays, 4 x 4 to start.
         rest_region.reset(footprint_, footprint_.square(), std::nullopt, 1.0, 0);
+        rest_region.base = kOutlineBase;
         Region* const whole[] = {&rest_region};
         refine(aim, whole, witnesses, media, frame, out);
         return;
