@@ -83,23 +83,6 @@ void Footprint::jittered(std::span<SubRay> out, std::span<const double> uniforms
     }
 }
 
-FootprintRegion Footprint::whole() const { return {0.0, captured_, 0.0, kTwoPi}; }
-
-void Footprint::grid(const FootprintRegion& region, int n, std::span<SubRay> out, std::span<const double> uniforms) const {
-    const double d_energy = (region.energy_hi - region.energy_lo) / n;
-    const double d_angle = (region.angle_hi_rad - region.angle_lo_rad) / n;
-    const double weight = d_energy / captured_ * d_angle / kTwoPi;
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i * n + j);
-            const FootprintRegion cell{region.energy_lo + i * d_energy, region.energy_lo + (i + 1) * d_energy,
-                                       region.angle_lo_rad + j * d_angle, region.angle_lo_rad + (j + 1) * d_angle};
-            out[k] = uniforms.empty() ? place(cell, 0.5, 0.5, weight)
-                                      : place(cell, uniforms[2 * k], uniforms[2 * k + 1], weight);
-        }
-    }
-}
-
 std::optional<FootprintRect> Footprint::clip(const FootprintRect& rect) const {
     const FootprintRect r{std::max(rect.x_lo, -max_radius_rad_), std::min(rect.x_hi, max_radius_rad_),
                           std::max(rect.y_lo, -max_radius_rad_), std::min(rect.y_hi, max_radius_rad_)};
@@ -111,22 +94,10 @@ bool Footprint::contains(const FootprintRect& rect, double x_rad, double y_rad) 
     return x_rad >= rect.x_lo && x_rad <= rect.x_hi && y_rad >= rect.y_lo && y_rad <= rect.y_hi;
 }
 
-void Footprint::grid(const FootprintRect& rect, int n, std::span<SubRay> out, std::span<const double> uniforms) const {
-    // Each axis is a normal distribution of sigma = w / 2: cut its CDF over the rectangle evenly.
-    const double sigma = 0.5 * waist_rad_;
-    const double x0 = normal_cdf(rect.x_lo / sigma), dx = (normal_cdf(rect.x_hi / sigma) - x0) / n;
-    const double y0 = normal_cdf(rect.y_lo / sigma), dy = (normal_cdf(rect.y_hi / sigma) - y0) / n;
-    const double weight = dx * dy / captured_;
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i * n + j);
-            const double ux = uniforms.empty() ? 0.5 : uniforms[2 * k];
-            const double uy = uniforms.empty() ? 0.5 : uniforms[2 * k + 1];
-            const double x = sigma * inverse_normal_cdf(x0 + (i + ux) * dx);
-            const double y = sigma * inverse_normal_cdf(y0 + (j + uy) * dy);
-            out[k] = {x, y, x * x + y * y <= max_radius_rad_ * max_radius_rad_ ? weight : 0.0};
-        }
-    }
-}
+FootprintRect Footprint::square() const { return {-max_radius_rad_, max_radius_rad_, -max_radius_rad_, max_radius_rad_}; }
+
+double Footprint::axis_cdf(double offset_rad) const { return normal_cdf(offset_rad / (0.5 * waist_rad_)); }
+
+double Footprint::axis_offset(double cdf) const { return 0.5 * waist_rad_ * inverse_normal_cdf(cdf); }
 
 }  // namespace ladarsim::sensor_model

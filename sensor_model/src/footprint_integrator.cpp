@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 
 #include "ladarsim/sensor_model/counter_random.h"
+#include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
 #include "ladarsim/sensor_model/volume_echoes.h"
 
@@ -14,66 +14,116 @@ namespace ladarsim::sensor_model {
 namespace {
 
 constexpr double kMradToRad = 1e-3;
-constexpr int kFirstLevel = 1;  // 2 x 2 cells, compared with the 4 x 4 of the next level
-constexpr int kLastLevel = 5;   // 32 x 32 cells
-const double kLevelErrorRatio = std::pow(2.0, 1.5);  // error of a level over that of the next
 constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays)
+constexpr int kEdgeQuadrature = 8;  // sub-rays spreading each side of a straight edge's share
 /// Objects subtending less than this many footprint radii can hide between the probes or cover a
 /// part of a footprint no probe sees: they are tested against each beam's cone and sampled.
 constexpr double kSmallObjectFootprints = 8.0;
 /// Where the sampling of the part of the footprint left to the background starts its draws, so
 /// that they never repeat those of a target's region in the same beam.
-constexpr std::uint32_t kComplementSamples = 1u << 20;
+constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's cell numbers
+
+/// A refined region starts as base x base cells of equal energy (2 x 2 for a whole footprint, whose
+/// probes already tell where its edges are; 4 x 4 for a target's outline); a cell splits in two
+/// along an axis (or in four), up to 8 times along each (a whole footprint's sliver holding 0.1 %
+/// of the beam is resolved), and a region traces at most so many sub-rays.
+constexpr int kMaxSplits = 8;
+constexpr std::size_t kFootprintSamples = 256;  ///< a whole footprint's (a recorded map's grazing one)
+constexpr std::size_t kOutlineSamples = 1024;   ///< a target's outline
+constexpr int kFootprintBase = 2;
+constexpr int kOutlineBase = 4;
+/// Random-draw numbers of the cells: every (splits along x, splits along y, i, j) its own.
+constexpr std::uint32_t cells_along(int base, int splits) { return static_cast<std::uint32_t>(base) << splits; }
+constexpr std::uint32_t first_cell_number(int base, int splits_x, int splits_y) {
+    std::uint32_t n = 0;
+    for (int a = 0; a <= kMaxSplits; ++a)
+        for (int b = 0; b <= kMaxSplits; ++b) {
+            if (a == splits_x && b == splits_y) return n;
+            n += cells_along(base, a) * cells_along(base, b);
+        }
+    return n;
+}
+/// The error bound a refinement stops at, in standard deviations of its estimate.
+constexpr double kConfidenceSigmas = 3.0;
+/// Two sub-rays on one surface whose reflectances differ by more than this factor straddle a change
+/// of material (a reflectance edge).
+constexpr double kMaterialContrast = 2.0;
 
 /// How far a continuous surface may bend away from a tangent plane, per metre along it: 5 deg
 /// between the facets of a terrain or a hull still make one surface, however far apart the
 /// sub-rays that sampled them.
 const double kSurfaceBend = std::sin(5.0 * std::numbers::pi / 180.0);
 
+/// Two echoes of one object, neighbours in range, on one continuous surface.
 bool same_surface(const SurfaceEcho& a, const SurfaceEcho& b, double gap_m) {
     if (b.range_m - a.range_m <= gap_m) return true;
-    if (a.object_id != b.object_id) return false;
     const Eigen::Vector3d d = b.point_world - a.point_world;
     const double allowed = gap_m + kSurfaceBend * d.norm();
     return std::abs(a.normal_world.cast<double>().dot(d)) <= allowed && std::abs(b.normal_world.cast<double>().dot(d)) <= allowed;
 }
 
-void add_to_tally(std::vector<FootprintIntegrator::Tally>& tally, std::uint32_t object_id, double energy_j) {
-    auto it = std::find_if(tally.begin(), tally.end(), [&](const FootprintIntegrator::Tally& t) { return t.object_id == object_id; });
-    if (it == tally.end()) tally.push_back({object_id, energy_j});
-    else it->energy_j += energy_j;
-}
+/// What one sub-ray met, as the refinement compares it with its neighbours'.
+struct Seen {
+    bool hit = false;
+    /// Range, object, point and normal; energy_j per unit of beam share.
+    SurfaceEcho echo{0.0, 0.0, 0.0, 0.0, 0, Eigen::Vector3d::Zero(), Eigen::Vector3f::Zero(), 0};
+    std::uint64_t volumes = 0;   ///< which media it crossed (one bit per object id modulo 64)
+    float reflectance = 0.0f;
+    float cos_incidence = 1.0f;
+};
 
-double tallied(const std::vector<FootprintIntegrator::Tally>& tally, std::uint32_t object_id) {
-    const auto it = std::find_if(tally.begin(), tally.end(), [&](const FootprintIntegrator::Tally& t) { return t.object_id == object_id; });
-    return it == tally.end() ? 0.0 : it->energy_j;
+/// Whether two sub-rays (or a probe and a sub-ray) can sit in one cell of a smooth integrand: both
+/// met nothing, or both met one surface of one object, of reflectances within a factor of each
+/// other (the echo itself changes smoothly with range and incidence across a surface).
+bool agree(const Seen& a, const Seen& b, double gap_m) {
+    if (a.volumes != b.volumes || a.hit != b.hit) return false;
+    if (!a.hit) return true;
+    if (a.echo.object_id != b.echo.object_id) return false;
+    const bool a_first = a.echo.range_m <= b.echo.range_m;
+    if (!same_surface(a_first ? a.echo : b.echo, a_first ? b.echo : a.echo, gap_m)) return false;
+    const double lo = std::min(a.reflectance, b.reflectance), hi = std::max(a.reflectance, b.reflectance);
+    return hi <= kMaterialContrast * lo;
 }
 
 }  // namespace
 
-std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m) {
+std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<std::uint32_t>* surface_of_echo) {
     std::vector<BeamSurface> surfaces;
-    gather_surfaces(echoes, gap_m, surfaces);
+    gather_surfaces(echoes, gap_m, surfaces, surface_of_echo);
     return surfaces;
 }
 
-void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces) {
-    // Sorted by range through (range, index) pairs, then moved once: std::sort's steps depend on
-    // its comparisons alone, so the order is the one sorting the echoes themselves gives.
-    thread_local std::vector<std::pair<double, std::uint32_t>> order;
+void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces,
+                     std::vector<std::uint32_t>* surface_of_echo) {
+    // One object at a time: a surface is one object's, so that a return always names the object
+    // whose echo made it (ground running into a wall's foot stays ground, the wall stays the wall;
+    // their pulses still merge in the waveform when they overlap). Sorted through (object, range,
+    // index) keys, then moved once: std::sort's steps depend on its comparisons alone, so the
+    // order is the one sorting the echoes themselves gives.
+    struct Key {
+        std::uint32_t object_id;
+        double range_m;
+        std::uint32_t index;
+    };
+    thread_local std::vector<Key> order;
     thread_local std::vector<SurfaceEcho> sorted;
     order.clear();
-    for (std::size_t i = 0; i < echoes.size(); ++i) order.emplace_back(echoes[i].range_m, static_cast<std::uint32_t>(i));
-    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < echoes.size(); ++i) order.push_back({echoes[i].object_id, echoes[i].range_m, static_cast<std::uint32_t>(i)});
+    std::sort(order.begin(), order.end(), [](const Key& a, const Key& b) {
+        return a.object_id != b.object_id ? a.object_id < b.object_id : a.range_m < b.range_m;
+    });
     sorted.clear();
-    for (const auto& [range, i] : order) sorted.push_back(echoes[i]);
+    for (const Key& k : order) sorted.push_back(echoes[k.index]);
     echoes.swap(sorted);
+    if (surface_of_echo) surface_of_echo->resize(echoes.size());
     // Echo lists of surfaces dropped from the end, kept for the next beam that needs more.
     thread_local std::vector<std::vector<Echo>> spare;
     std::size_t count = 0;
     for (std::size_t first = 0; first < echoes.size();) {
         std::size_t last = first + 1;
-        while (last < echoes.size() && same_surface(echoes[last - 1], echoes[last], gap_m)) ++last;
+        while (last < echoes.size() && echoes[last].object_id == echoes[first].object_id &&
+               same_surface(echoes[last - 1], echoes[last], gap_m))
+            ++last;
         if (count == surfaces.size()) {
             surfaces.emplace_back();
             if (!spare.empty()) {
@@ -85,7 +135,7 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
         surface.echoes.clear();
         surface.weight = 0.0;
         surface.source = ReturnSource::surface;
-        bool one_object = true;
+        surface.object_id = echoes[first].object_id;
         for (std::size_t k = first; k < last; ++k) {
             surface.weight += echoes[k].weight;
             // A sub-ray stands for its cell of the surface, which reaches about half-way to the
@@ -95,15 +145,7 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
             const double after = k + 1 < last ? echoes[k + 1].range_m - echoes[k].range_m : 0.0;
             const double spread = std::max(echoes[k].spread_m, 0.5 * std::max(before, after));
             surface.echoes.push_back({echoes[k].range_m, echoes[k].energy_j, 0, spread});
-            one_object = one_object && echoes[k].object_id == echoes[first].object_id;
-        }
-        surface.object_id = echoes[first].object_id;
-        if (!one_object) {  // rare (objects within the gap of each other): tally per object
-            std::map<std::uint32_t, double> energy_by_object;
-            for (std::size_t k = first; k < last; ++k) energy_by_object[echoes[k].object_id] += echoes[k].energy_j;
-            surface.object_id = std::max_element(energy_by_object.begin(), energy_by_object.end(),
-                                                  [](const auto& a, const auto& b) { return a.second < b.second; })
-                                    ->first;
+            if (surface_of_echo) (*surface_of_echo)[k] = static_cast<std::uint32_t>(count - 1);
         }
         first = last;
     }
@@ -115,6 +157,112 @@ void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector
     surfaces.resize(count);
 }
 
+/// One rectangle of offsets refined as a tree of cells of equal energy density, in the coordinates
+/// of the two axis CDFs (a cell then carries the energy of its area): cells split where their
+/// sub-rays disagree with their neighbours', along the axis across which they disagree, so that a
+/// straight edge is followed by thin cells along it. A split cell's sub-ray is reused by the child
+/// it falls in (with jitter).
+struct FootprintIntegrator::Region {
+    FootprintRect rect{};
+    std::optional<FootprintRect> excluded;  ///< accounted elsewhere: sub-rays there are dropped
+    double share = 0.0;                     ///< > 0: the kept cells carry this share of the beam
+    std::uint32_t first_sample = 0;         ///< where its random draws start
+    double cdf_x0 = 0.0, cdf_dx = 0.0, cdf_y0 = 0.0, cdf_dy = 0.0;
+
+    struct Node {
+        double u0, u1, v0, v1;        ///< the cell, in the region's CDF square [0, 1)^2
+        std::uint8_t splits_x, splits_y;
+        std::uint32_t i, j;           ///< its index along each axis at those splits
+        std::int32_t first_child = -1;
+        std::uint8_t split = 0;       ///< how it was split: bit 0 along x, bit 1 along y
+        std::uint8_t want = 0;        ///< the axes it should split along
+        bool traced = false;
+        bool kept = true;             ///< not in the excluded part
+        bool boundary = false;
+        bool urgent = false;          ///< bounds a return whose energy is not settled
+        double u, v;                  ///< its sub-ray's place in the CDF square
+        double x_rad, y_rad;
+        double weight;                ///< the cell's share of the beam (0 beyond the truncation)
+        Seen seen;
+        std::uint32_t volume_first = 0, volume_count = 0;     ///< its echoes in `volume_echoes`
+        std::array<std::int32_t, 4> touches{-1, -1, -1, -1};  ///< returns its cell may hold a part of
+        std::int32_t surface = -1;    ///< the return its surface echo went to
+        std::int32_t adopt = -1;      ///< a probe inside it that disagrees: in `probes`
+        bool leaf() const { return first_child < 0; }
+    };
+    struct VolumeEcho {
+        std::uint32_t object_id;
+        double range_m;
+        double energy_j;  ///< per unit of beam share
+    };
+    /// A probe inside the region, as a sub-ray its cell can adopt (no ray needed) once split so
+    /// that the probe and the cell's own sub-ray lie apart.
+    struct AdoptedProbe {
+        double u, v;
+        Seen seen;
+    };
+    std::vector<Node> nodes;  ///< the base cells first, then children, four (or two) together
+    std::vector<VolumeEcho> volume_echoes;
+    std::vector<AdoptedProbe> probes;
+    /// The witnesses' places in the CDF square and what they met, worked out once.
+    std::vector<double> witness_u, witness_v;
+    std::vector<Seen> witness_seen;
+    bool media = false;       ///< sub-rays look into volume media (probes do not: never adopted)
+    /// The region is an object's outline: its border is the object's edge somewhere along it, so a
+    /// cell on the border whose sub-ray met the object may hold an edge of it.
+    bool outline = false;
+    int base = kFootprintBase;  ///< cells along each axis to start
+    std::size_t max_samples = kFootprintSamples;
+    double scale = 1.0;       ///< weights as carried: share / kept weight, or 1
+
+    void reset(const Footprint& footprint, const FootprintRect& r, const std::optional<FootprintRect>& without, double share_of_beam,
+               std::uint32_t first) {
+        nodes.clear();
+        volume_echoes.clear();
+        probes.clear();
+        witness_u.clear();
+        witness_v.clear();
+        witness_seen.clear();
+        outline = false;
+        base = kFootprintBase;
+        max_samples = kFootprintSamples;
+        rect = r;
+        excluded = without;
+        share = share_of_beam;
+        first_sample = first;
+        cdf_x0 = footprint.axis_cdf(r.x_lo);
+        cdf_dx = footprint.axis_cdf(r.x_hi) - cdf_x0;
+        cdf_y0 = footprint.axis_cdf(r.y_lo);
+        cdf_dy = footprint.axis_cdf(r.y_hi) - cdf_y0;
+    }
+    std::uint32_t number(const Node& n) const {
+        return first_sample + first_cell_number(base, n.splits_x, n.splits_y) + n.i * cells_along(base, n.splits_y) + n.j;
+    }
+    /// Fills a node's sub-ray at (u, v) and its weight.
+    void place(const Footprint& footprint, Node& n, double u, double v) const {
+        n.u = u;
+        n.v = v;
+        n.x_rad = footprint.axis_offset(cdf_x0 + u * cdf_dx);
+        n.y_rad = footprint.axis_offset(cdf_y0 + v * cdf_dy);
+        n.weight = footprint.within_truncation(n.x_rad, n.y_rad)
+                       ? footprint.cell_weight(cdf_dx * (n.u1 - n.u0), cdf_dy * (n.v1 - n.v0))
+                       : 0.0;
+        n.kept = !excluded || !footprint.contains(*excluded, n.x_rad, n.y_rad);
+    }
+    /// The leaf holding CDF-square point (u, v), or null outside the square.
+    const Node* leaf_at(double u, double v) const {
+        if (!(u >= 0.0 && u < 1.0 && v >= 0.0 && v < 1.0)) return nullptr;
+        const Node* n = &nodes[static_cast<std::size_t>(std::min(static_cast<int>(u * base), base - 1) * base +
+                                                        std::min(static_cast<int>(v * base), base - 1))];
+        while (!n->leaf()) {
+            const int a = (n->split & 1) && u >= 0.5 * (n->u0 + n->u1) ? 1 : 0;
+            const int b = (n->split & 2) && v >= 0.5 * (n->v0 + n->v1) ? 1 : 0;
+            n = &nodes[static_cast<std::size_t>(n->first_child + (n->split == 3 ? 2 * a + b : a + b))];
+        }
+        return n;
+    }
+};
+
 FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced,
                                          const BeamReceiver& receiver)
     : scenario_(scenario),
@@ -122,8 +270,6 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
       receiver_(receiver),
       adaptive_(scenario.render.footprint_samples == 0),
       tolerance_(scenario.render.footprint_tolerance),
-      floor_energy_j_(receiver.apd().threshold_a() /
-                      (receiver.apd().amps_per_watt() * receiver.waveform().pulse().peak_per_joule())),
       ellipticity_(scenario.sensor.transmitter.divergence_el_mrad / scenario.sensor.transmitter.divergence_mrad),
       small_object_rad_(0.0),
       aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
@@ -138,6 +284,9 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
         quadrature_x_.push_back(s.offset_x_rad);
         quadrature_y_.push_back(s.offset_y_rad);
     }
+    std::vector<SubRay> edge_nodes(kEdgeQuadrature);
+    Footprint(footprint_.waist_rad() * 2.0, kEdgeQuadrature, scenario.render.footprint_truncation).fixed(edge_nodes);
+    for (const SubRay& s : edge_nodes) edge_quadrature_.emplace_back(s.offset_x_rad, s.offset_y_rad);
 }
 
 Eigen::Vector2d FootprintIntegrator::offset_of(const Eigen::Vector3d& v) const {
@@ -165,6 +314,12 @@ double FootprintIntegrator::echo_energy_j(double weight, double reflectance, dou
                                     reflectance, cos_incidence, sensor.optics.aperture_area_m2(), range_m);
 }
 
+double FootprintIntegrator::threshold_energy_j(double spread_m) const {
+    const PulseShape shape = PulseShape::of(scenario_.sensor.transmitter.pulse_width_ns * 1e-9, 2.0 * spread_m / kSpeedOfLight_mps);
+    const ApdReceiver& apd = receiver_.apd();
+    return apd.threshold_a() / (apd.amps_per_watt() * shape.peak_per_joule());
+}
+
 void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame,
                                     BeamEchoes& out) const {
     out.surface.clear();
@@ -172,11 +327,18 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     out.rays = 0;
     if (!adaptive_) {
         thread_local std::vector<SubRay> sub_rays;
+        thread_local std::vector<double> uniforms;
         sub_rays.resize(static_cast<std::size_t>(footprint_.samples()));
-        const std::span<const double> u = jitter(aim, frame, 0, sub_rays.size());
-        if (u.empty()) footprint_.fixed(sub_rays);
-        else footprint_.jittered(sub_rays, u);
-        trace(aim, sub_rays, traced_.has_volumes(), frame, 0, out, nullptr);
+        if (!scenario_.render.jitter) {
+            footprint_.fixed(sub_rays);
+        } else {
+            // Two cells per block of four draws.
+            uniforms.resize(2 * sub_rays.size());
+            RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, 0);
+            for (double& u : uniforms) u = draws.uniform();
+            footprint_.jittered(sub_rays, uniforms);
+        }
+        trace(aim, sub_rays, traced_.has_volumes(), frame, out);
         return;
     }
 
@@ -237,80 +399,508 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
                           : *seen;
     }
 
+    // Probes are witnesses of what the sub-rays of their cells must find, unless they met a moving
+    // object (a neighbour's probe flew at another time).
+    thread_local std::vector<const Probe*> witnesses;
+    witnesses.clear();
+    for (const Probe& p : probes) {
+        const bool moving = p.hit->hit && std::any_of(objects.begin(), objects.end(), [&](const raytrace::ObjectBounds& b) {
+            return b.moving && b.object_id == p.hit->hit->object_id;
+        });
+        if (!moving) witnesses.push_back(&p);
+    }
+
     // Targets are sampled where they can be; the rest of the footprint, like a footprint without
-    // targets, is one plane patch when the probes agree, and sampled otherwise (always in media).
-    const FootprintRegion whole = footprint_.whole();
+    // targets, is one plane patch when the probes agree, and refined otherwise (always in media).
+    thread_local Region target_region, rest_region;
     if (targets) {
-        const double rest = 1.0 - sample(aim, *targets, std::nullopt, 0.0, media, frame, out);
-        if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed))
-            sample(aim, whole, targets, rest, media, frame, out);
+        target_region.reset(footprint_, *targets, std::nullopt, 0.0, 0);
+        target_region.outline = true;
+        target_region.base = kOutlineBase;
+        target_region.max_samples = kOutlineSamples;
+        Region* const first[] = {&target_region};
+        refine(aim, first, witnesses, media, frame, out);
+        double sampled = 0.0;
+        for (const Region::Node& n : target_region.nodes)
+            if (n.leaf() && n.kept) sampled += n.weight * target_region.scale;
+        const double rest = 1.0 - sampled;
+        if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed)) {
+            rest_region.reset(footprint_, footprint_.square(), targets, rest, kComplementSamples);
+            Region* const second[] = {&rest_region};
+            refine(aim, second, witnesses, media, frame, out);
+        }
         return;
     }
-    if (media || plane_patch(aim, probes, std::nullopt, 1.0, out) == Patch::mixed)
-        sample(aim, whole, std::nullopt, 1.0, media, frame, out);
-}
-
-std::span<const double> FootprintIntegrator::jitter(const BeamAim& aim, std::uint64_t frame, std::uint32_t first_sample,
-                                                    std::size_t cells) const {
-    if (!scenario_.render.jitter) return {};
-    thread_local std::vector<double> uniforms;
-    uniforms.resize(2 * cells);
-    // Two cells per block of four draws: the blocks of `cells` cells starting at `first_sample`
-    // end before those of the next `cells` start.
-    RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, first_sample);
-    for (double& u : uniforms) u = draws.uniform();
-    return uniforms;
-}
-
-template <class Region>
-double FootprintIntegrator::sample(const BeamAim& aim, const Region& region, const std::optional<FootprintRect>& excluded,
-                                   double share, bool media, std::uint64_t frame, BeamEchoes& out) const {
-    thread_local std::vector<SubRay> grid, kept;
-    thread_local std::vector<Tally> tally, previous;
-    const std::size_t surface_before = out.surface.size();
-    const std::size_t volume_before = out.volume.size();
-    std::uint32_t first_sample = excluded ? kComplementSamples : 0;
-    previous.clear();
-    for (int level = kFirstLevel;; ++level) {
-        const int n = 1 << level;
-        const std::size_t cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
-        grid.resize(cells);
-        footprint_.grid(region, n, grid, jitter(aim, frame, first_sample, cells));
-        kept.clear();
-        double kept_weight = 0.0;
-        for (const SubRay& sub : grid) {
-            if (sub.weight <= 0.0) continue;
-            if (excluded && footprint_.contains(*excluded, sub.offset_x_rad, sub.offset_y_rad)) continue;
-            kept.push_back(sub);
-            kept_weight += sub.weight;
-        }
-        // With a share given, the kept cells carry it (the excluded part is accounted elsewhere).
-        if (share > 0.0 && kept_weight > 0.0) {
-            for (SubRay& sub : kept) sub.weight *= share / kept_weight;
-            kept_weight = share;
-        }
-        out.surface.resize(surface_before);
-        out.volume.resize(volume_before);
-        tally.clear();
-        trace(aim, kept, media, frame, first_sample, out, &tally);
-        // Converged when this level agrees with the previous one (4 x fewer cells) on every
-        // object's energy. Their difference is mostly the coarser level's error; jittered
-        // stratification of an edge errs as cells^(-3/4), so this level's error is the difference
-        // over 2^(3/2) (errors well below the detection threshold do not count).
-        auto agrees = [&](const Tally& t) {
-            return std::abs(tallied(tally, t.object_id) - tallied(previous, t.object_id)) <=
-                   kLevelErrorRatio * tolerance_ * std::max(tallied(tally, t.object_id), floor_energy_j_);
-        };
-        const bool converged = level > kFirstLevel && !kept.empty() && std::all_of(tally.begin(), tally.end(), agrees) &&
-                               std::all_of(previous.begin(), previous.end(), agrees);
-        if (converged || level == kLastLevel) return kept_weight;
-        std::swap(tally, previous);
-        first_sample += static_cast<std::uint32_t>(cells);
+    if (media) {
+        // Probes do not look into media: a cloud's sliver shows only to the sub-rays, 4 x 4 to start.
+        rest_region.reset(footprint_, footprint_.square(), std::nullopt, 1.0, 0);
+        rest_region.base = kOutlineBase;
+        Region* const whole[] = {&rest_region};
+        refine(aim, whole, witnesses, media, frame, out);
+        return;
+    }
+    const Patch patch = plane_patch(aim, probes, std::nullopt, 1.0, out);
+    if (patch == Patch::empty) {
+        // Nothing inside; a sentinel that met something: its edge may cross the rim.
+        const bool near = std::any_of(probes.begin(), probes.end(), [&](const Probe& p) {
+            return p.hit->hit && !footprint_.within_truncation(p.x_rad, p.y_rad);
+        });
+        if (near) straight_edge(aim, witnesses, out);
+        return;
+    }
+    if (patch == Patch::mixed) {
+        rest_region.reset(footprint_, footprint_.square(), std::nullopt, 1.0, 0);
+        Region* const whole[] = {&rest_region};
+        refine(aim, whole, witnesses, media, frame, out, true);
     }
 }
 
-void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, std::uint32_t first_sample, BeamEchoes& out,
-                                std::vector<Tally>* tally) const {
+void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses,
+                                 bool media, std::uint64_t frame, BeamEchoes& out, bool try_edge) const {
+    const bool jitter = scenario_.render.jitter;
+    auto place = [&](Region& r, Region::Node& n) {
+        double ju = 0.5, jv = 0.5;
+        if (jitter) {
+            const auto u = uniform4(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, r.number(n));
+            ju = u[0];
+            jv = u[1];
+        }
+        r.place(footprint_, n, n.u0 + ju * (n.u1 - n.u0), n.v0 + jv * (n.v1 - n.v0));
+    };
+    for (Region* r : regions) {
+        r->media = media;
+        for (int i = 0; i < r->base; ++i) {
+            for (int j = 0; j < r->base; ++j) {
+                Region::Node n{};
+                n.u0 = double(i) / r->base;
+                n.u1 = double(i + 1) / r->base;
+                n.v0 = double(j) / r->base;
+                n.v1 = double(j + 1) / r->base;
+                n.i = static_cast<std::uint32_t>(i);
+                n.j = static_cast<std::uint32_t>(j);
+                place(*r, n);
+                r->nodes.push_back(n);
+            }
+        }
+    }
+    // Echoes that earlier stages of this beam settled (a target's region, a plane patch).
+    const std::size_t fixed_surface = out.surface.size();
+    thread_local std::vector<BeamSurface> fixed_volume;
+    fixed_volume = out.volume;
+    thread_local std::vector<SurfaceEcho> scratch;
+    for (;;) {
+        trace_samples(aim, regions, media, frame, out);
+        // The echoes as they stand: every kept leaf's, weighted by its cell.
+        out.surface.resize(fixed_surface);
+        out.volume = fixed_volume;
+        for (std::size_t ri = 0; ri < regions.size(); ++ri) {
+            Region& r = *regions[ri];
+            double kept_weight = 0.0;
+            for (const Region::Node& n : r.nodes)
+                if (n.leaf() && n.kept) kept_weight += n.weight;
+            r.scale = r.share > 0.0 && kept_weight > 0.0 ? r.share / kept_weight : 1.0;
+            for (std::size_t k = 0; k < r.nodes.size(); ++k) {
+                const Region::Node& n = r.nodes[k];
+                if (!n.leaf() || !n.kept || n.weight <= 0.0) continue;
+                const double w = n.weight * r.scale;
+                if (n.seen.hit) {
+                    SurfaceEcho e = n.seen.echo;
+                    e.weight = w;
+                    e.energy_j *= w;
+                    e.sample = static_cast<std::uint32_t>((ri + 1) << 24 | k);  // 0: not a leaf's
+                    out.surface.push_back(e);
+                }
+                for (std::uint32_t v = n.volume_first; v < n.volume_first + n.volume_count; ++v) {
+                    const Region::VolumeEcho& ve = r.volume_echoes[v];
+                    auto it = std::find_if(out.volume.begin(), out.volume.end(), [&](const BeamSurface& b) { return b.object_id == ve.object_id; });
+                    if (it == out.volume.end()) {
+                        BeamSurface b;
+                        b.object_id = ve.object_id;
+                        b.source = ReturnSource::volume;
+                        out.volume.push_back(std::move(b));
+                        it = out.volume.end() - 1;
+                    }
+                    it->weight += w;
+                    it->echoes.push_back({ve.range_m, ve.energy_j * w, 0});
+                }
+            }
+        }
+        scratch.assign(out.surface.begin(), out.surface.end());
+        if (settled(regions, witnesses, scratch, out.volume)) break;
+        if (try_edge) {
+            // Unsettled at the first cells: one straight edge settles it at once, when it holds.
+            try_edge = false;
+            out.surface.resize(fixed_surface);
+            out.volume = fixed_volume;
+            if (regions.size() == 1 && straight_edge(aim, witnesses, out, regions.front())) break;
+        }
+        // Split the marked leaves along the axes they disagree across: two children (or four),
+        // the one holding the parent's jittered sub-ray reusing it.
+        bool any = false;
+        for (Region* r : regions) {
+            const std::size_t leaves = r->nodes.size();
+            for (std::size_t k = 0; k < leaves && r->nodes.size() + 4 <= r->max_samples; ++k) {
+                const Region::Node parent = r->nodes[k];
+                const std::uint8_t axes = parent.want & ((parent.splits_x < kMaxSplits ? 1 : 0) | (parent.splits_y < kMaxSplits ? 2 : 0));
+                if (!parent.leaf() || !parent.urgent || axes == 0) continue;
+                any = true;
+                r->nodes[k].first_child = static_cast<std::int32_t>(r->nodes.size());
+                r->nodes[k].split = axes;
+                const int along_x = axes & 1 ? 2 : 1, along_y = axes & 2 ? 2 : 1;
+                const double um = 0.5 * (parent.u0 + parent.u1), vm = 0.5 * (parent.v0 + parent.v1);
+                for (int a = 0; a < along_x; ++a) {
+                    for (int b = 0; b < along_y; ++b) {
+                        Region::Node c{};
+                        c.u0 = along_x == 2 && a == 1 ? um : parent.u0;
+                        c.u1 = along_x == 2 && a == 0 ? um : parent.u1;
+                        c.v0 = along_y == 2 && b == 1 ? vm : parent.v0;
+                        c.v1 = along_y == 2 && b == 0 ? vm : parent.v1;
+                        c.splits_x = static_cast<std::uint8_t>(parent.splits_x + (along_x == 2));
+                        c.splits_y = static_cast<std::uint8_t>(parent.splits_y + (along_y == 2));
+                        c.i = along_x == 2 ? 2 * parent.i + static_cast<std::uint32_t>(a) : parent.i;
+                        c.j = along_y == 2 ? 2 * parent.j + static_cast<std::uint32_t>(b) : parent.j;
+                        auto holds = [&](double u, double v) { return u >= c.u0 && u < c.u1 && v >= c.v0 && v < c.v1; };
+                        if (jitter && holds(parent.u, parent.v)) {
+                            // The parent's sub-ray lies in this child: a uniform draw within it.
+                            c.seen = parent.seen;
+                            c.volume_first = parent.volume_first;
+                            c.volume_count = parent.volume_count;
+                            c.traced = true;
+                            r->place(footprint_, c, parent.u, parent.v);
+                        } else if (parent.adopt >= 0 && holds(r->probes[static_cast<std::size_t>(parent.adopt)].u,
+                                                              r->probes[static_cast<std::size_t>(parent.adopt)].v)) {
+                            // The disagreeing probe lies in this child: its sub-ray, traced already.
+                            const Region::AdoptedProbe& p = r->probes[static_cast<std::size_t>(parent.adopt)];
+                            r->place(footprint_, c, p.u, p.v);
+                            c.seen = p.seen;
+                            c.traced = true;
+                        } else {
+                            place(*r, c);
+                        }
+                        r->nodes.push_back(c);
+                    }
+                }
+            }
+        }
+        if (!any) break;
+    }
+    // The echoes are the beam's now, no longer the regions' sub-rays'.
+    for (std::size_t k = fixed_surface; k < out.surface.size(); ++k) out.surface[k].sample = 0;
+}
+
+void FootprintIntegrator::trace_samples(const BeamAim& aim, std::span<Region* const> regions, bool media, std::uint64_t frame,
+                                        BeamEchoes& out) const {
+    const auto& sensor = scenario_.sensor;
+    thread_local std::vector<raytrace::Ray> rays;
+    thread_local std::vector<std::optional<raytrace::Hit>> hits;
+    thread_local std::vector<Region::Node*> traced;
+    thread_local std::vector<Region*> owner;
+    thread_local std::vector<BeamSurface> volumes;
+    rays.clear();
+    traced.clear();
+    owner.clear();
+    for (Region* r : regions) {
+        for (Region::Node& n : r->nodes) {
+            if (n.traced) continue;
+            raytrace::Ray ray;
+            ray.origin_world = scenario_.mount.position_world;
+            ray.direction = aim.world_from_beam * in_beam(n.x_rad, n.y_rad);
+            ray.time_s = aim.time_s;
+            ray.max_range_m = sensor.receiver.max_range_m;
+            rays.push_back(ray);
+            traced.push_back(&n);
+            owner.push_back(r);
+        }
+    }
+    hits.resize(rays.size());
+    traced_.trace(rays, hits);
+    out.rays += static_cast<int>(rays.size());
+
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        Region::Node& n = *traced[i];
+        Region& r = *owner[i];
+        n.traced = true;
+        n.seen = Seen{};
+        double fog = 1.0;
+        if (media) {
+            const std::vector<raytrace::VolumeSegment> segments = traced_.volumes_along(rays[i]);
+            // Enough draws per sub-ray that no two share them.
+            RandomSequence draws(scenario_.render.seed, RandomStream::volume_scatter, frame, aim.cell, 64 * r.number(n));
+            volumes.clear();
+            add_volume_echoes(segments, hits[i] ? hits[i]->range_m : sensor.receiver.max_range_m,
+                              sensor.transmitter.pulse_energy_j() * sensor.optics.optics_efficiency, 1.0,
+                              sensor.optics.aperture_area_m2(), receiver_, draws, volumes);
+            n.volume_first = static_cast<std::uint32_t>(r.volume_echoes.size());
+            for (const BeamSurface& v : volumes)
+                for (const Echo& e : v.echoes) r.volume_echoes.push_back({v.object_id, e.range_m, e.energy_j});
+            n.volume_count = static_cast<std::uint32_t>(r.volume_echoes.size()) - n.volume_first;
+            for (const raytrace::VolumeSegment& seg : segments) n.seen.volumes |= std::uint64_t{1} << (seg.object_id % 64);
+            if (hits[i]) fog = std::exp(-2.0 * optical_depth(segments, hits[i]->range_m));
+        }
+        if (!hits[i]) continue;
+        const raytrace::Hit& h = *hits[i];
+        n.seen.hit = true;
+        n.seen.reflectance = h.reflectance;
+        n.seen.echo = {h.range_m, 1.0, echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, fog), 0.0, h.object_id,
+                       rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world, 0};
+    }
+}
+
+bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<const Probe* const> witnesses,
+                                  std::vector<SurfaceEcho>& echoes, const std::vector<BeamSurface>& volumes) const {
+    const double gap = scenario_.sensor.receiver.return_gap_m;
+    // The returns as they stand: each surface's energy and range spread, and so the energy at
+    // which its pulse reaches the threshold.
+    thread_local std::vector<std::uint32_t> surface_of_echo;
+    std::vector<BeamSurface> surfaces = gather_surfaces(echoes, gap, &surface_of_echo);
+    {
+        // What the receiver tells apart: surfaces whose echoes overlap in range, or come closer than
+        // the pulse's length, make one pulse in the waveform. A cell shared by two of them changes
+        // nothing the receiver reports, so they are judged as one return.
+        const double resolution = 0.5 * kSpeedOfLight_mps * scenario_.sensor.transmitter.pulse_width_ns * 1e-9;
+        thread_local std::vector<std::pair<double, double>> extent;
+        thread_local std::vector<std::uint32_t> order, merged;
+        extent.resize(surfaces.size());
+        order.resize(surfaces.size());
+        for (std::size_t g = 0; g < surfaces.size(); ++g) {
+            double lo = surfaces[g].echoes.front().range_m, hi = lo;
+            for (const Echo& e : surfaces[g].echoes) {
+                lo = std::min(lo, e.range_m - e.spread_m);
+                hi = std::max(hi, e.range_m + e.spread_m);
+            }
+            extent[g] = {lo, hi};
+            order[g] = static_cast<std::uint32_t>(g);
+        }
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return extent[a].first < extent[b].first; });
+        merged.assign(surfaces.size(), 0);
+        std::vector<BeamSurface> clusters;
+        double reach = -1e300;
+        for (const std::uint32_t g : order) {
+            if (clusters.empty() || extent[g].first - reach > resolution) {
+                clusters.emplace_back();
+                reach = extent[g].second;
+            }
+            reach = std::max(reach, extent[g].second);
+            merged[g] = static_cast<std::uint32_t>(clusters.size() - 1);
+            auto& target = clusters.back().echoes;
+            target.insert(target.end(), surfaces[g].echoes.begin(), surfaces[g].echoes.end());
+        }
+        for (std::uint32_t& g : surface_of_echo) g = merged[g];
+        surfaces = std::move(clusters);
+    }
+    const std::size_t returns = surfaces.size() + volumes.size();
+    thread_local std::vector<double> energy, variance, threshold;
+    energy.assign(returns, 0.0);
+    variance.assign(returns, 0.0);
+    threshold.assign(returns, 0.0);
+    auto moments = [&](const std::vector<Echo>& list, std::size_t g) {
+        double e = 0.0, mean = 0.0;
+        for (const Echo& x : list) {
+            e += x.energy_j;
+            mean += x.energy_j * x.range_m;
+        }
+        double spread = 0.0;
+        if (e > 0.0) {
+            mean /= e;
+            for (const Echo& x : list) spread += x.energy_j * ((x.range_m - mean) * (x.range_m - mean) + x.spread_m * x.spread_m);
+            spread = std::sqrt(spread / e);
+        }
+        energy[g] = e;
+        threshold[g] = threshold_energy_j(spread);
+    };
+    for (std::size_t g = 0; g < surfaces.size(); ++g) moments(surfaces[g].echoes, g);
+    for (std::size_t g = 0; g < volumes.size(); ++g) moments(volumes[g].echoes, surfaces.size() + g);
+    // Which return each leaf's surface echo went to.
+    for (Region* r : regions)
+        for (Region::Node& n : r->nodes) {
+            n.boundary = n.urgent = false;
+            n.want = 0;
+            n.adopt = -1;
+            n.touches = {-1, -1, -1, -1};
+            n.surface = -1;
+        }
+    for (std::size_t k = 0; k < echoes.size(); ++k) {
+        const std::uint32_t key = echoes[k].sample;
+        if (key >> 24 == 0) continue;
+        regions[(key >> 24) - 1]->nodes[key & 0xFFFFFFu].surface = static_cast<std::int32_t>(surface_of_echo[k]);
+    }
+    auto volume_return = [&](std::uint32_t object_id) -> std::int32_t {
+        for (std::size_t g = 0; g < volumes.size(); ++g)
+            if (volumes[g].object_id == object_id) return static_cast<std::int32_t>(surfaces.size() + g);
+        return -1;
+    };
+
+    // Cells that disagree with a neighbour (or with a probe inside them) may hold a part of what
+    // the other found: each is a draw of about half its cell's energy either way, adding
+    // (w e / 2)^2 to the variance of the returns involved.
+    auto add_uncertainty = [&](Region::Node& n, std::int32_t g, double energy_j) {
+        if (g < 0 || !(energy_j > 0.0)) return;
+        variance[static_cast<std::size_t>(g)] += 0.25 * energy_j * energy_j;
+        n.boundary = true;
+        for (std::int32_t& t : n.touches) {
+            if (t == g) break;
+            if (t < 0) {
+                t = g;
+                break;
+            }
+        }
+    };
+    auto involve = [&](const Region& r, Region::Node& a, const Seen& other, std::int32_t other_surface,
+                       std::uint32_t other_volume_first, std::uint32_t other_volume_count) {
+        const double w = a.weight * r.scale;
+        // Its cell may hold the other's surface (and the other's cell its own: counted from there).
+        if (a.surface >= 0) add_uncertainty(a, a.surface, w * a.seen.echo.energy_j);
+        if (other.hit) add_uncertainty(a, other_surface, w * other.echo.energy_j);
+        for (std::uint32_t v = a.volume_first; v < a.volume_first + a.volume_count; ++v)
+            add_uncertainty(a, volume_return(r.volume_echoes[v].object_id), w * r.volume_echoes[v].energy_j);
+        for (std::uint32_t v = other_volume_first; v < other_volume_first + other_volume_count; ++v)
+            add_uncertainty(a, volume_return(r.volume_echoes[v].object_id), w * r.volume_echoes[v].energy_j);
+    };
+    constexpr double kAcross = 1e-9;  // a step across a cell's side: far below the finest cell
+    for (Region* region : regions) {
+        Region& r = *region;
+        for (std::size_t k = 0; k < r.nodes.size(); ++k) {
+            if (!r.nodes[k].leaf() || !r.nodes[k].kept) continue;
+            for (int side = 0; side < 4; ++side) {
+                Region::Node& n = r.nodes[k];
+                const bool across_x = side < 2;  // right, left: neighbours along x
+                const double um = 0.5 * (n.u0 + n.u1), vm = 0.5 * (n.v0 + n.v1);
+                const Region::Node* m = side == 0   ? r.leaf_at(n.u1 + kAcross, vm)
+                                        : side == 1 ? r.leaf_at(n.u0 - kAcross, vm)
+                                        : side == 2 ? r.leaf_at(um, n.v1 + kAcross)
+                                                    : r.leaf_at(um, n.v0 - kAcross);
+                if (!m && r.outline && n.seen.hit) {
+                    // On an object's outline: what lies beyond is not the object.
+                    involve(r, n, Seen{}, -1, 0, 0);
+                    n.want |= across_x ? 1 : 2;
+                    continue;
+                }
+                if (!m || !m->kept) continue;
+                // Each pair once, from the side of the shorter edge (a finer neighbour compares itself).
+                const double n_side = across_x ? n.v1 - n.v0 : n.u1 - n.u0;
+                const double m_side = across_x ? m->v1 - m->v0 : m->u1 - m->u0;
+                if (m_side < n_side || (m_side == n_side && (side == 1 || side == 3))) continue;
+                if (agree(n.seen, m->seen, gap)) continue;
+                Region::Node& other = r.nodes[static_cast<std::size_t>(m - r.nodes.data())];
+                const std::uint8_t across = across_x ? 1 : 2, along = across_x ? 2 : 1;
+                if (n.surface >= 0 && n.surface == other.surface && n.seen.volumes == other.seen.volumes) {
+                    // Two surfaces within one return (discs of a map, leaves and ground at one
+                    // range): only their echoes' difference moves its energy.
+                    const double de = std::abs(n.seen.echo.energy_j - other.seen.echo.energy_j);
+                    add_uncertainty(n, n.surface, n.weight * r.scale * de);
+                    add_uncertainty(other, n.surface, other.weight * r.scale * de);
+                    if (n.boundary) n.want |= across;
+                    if (other.boundary) other.want |= across;
+                    continue;
+                }
+                involve(r, n, other.seen, other.surface, other.volume_first, other.volume_count);
+                involve(r, other, n.seen, n.surface, n.volume_first, n.volume_count);
+                // Both split across the edge between them; the one coarser along it, along it too.
+                n.want |= across;
+                other.want |= across;
+                if (m_side > n_side) other.want |= along;
+            }
+        }
+        // Probes inside the region: a probe that met something its cell's sub-ray did not (an
+        // edge's sliver between sub-rays) makes that cell uncertain by the probe's echo.
+        for (std::size_t w = 0; w < witnesses.size(); ++w) {
+            const Probe* p = witnesses[w];
+            if (r.excluded && footprint_.contains(*r.excluded, p->x_rad, p->y_rad)) continue;
+            if (!footprint_.within_truncation(p->x_rad, p->y_rad)) continue;
+            if (r.witness_u.size() != witnesses.size()) {
+                // Where each probe lies in the region and what it met, once per region.
+                r.witness_u.resize(witnesses.size());
+                r.witness_v.resize(witnesses.size());
+                r.witness_seen.resize(witnesses.size());
+                for (std::size_t q = 0; q < witnesses.size(); ++q) {
+                    const Probe* o = witnesses[q];
+                    if (!footprint_.within_truncation(o->x_rad, o->y_rad)) continue;  // never looked at
+                    r.witness_u[q] = (footprint_.axis_cdf(o->x_rad) - r.cdf_x0) / r.cdf_dx;
+                    r.witness_v[q] = (footprint_.axis_cdf(o->y_rad) - r.cdf_y0) / r.cdf_dy;
+                    Seen& seen = r.witness_seen[q];
+                    seen = Seen{};
+                    if (!o->hit->hit) continue;
+                    const raytrace::Hit& h = *o->hit->hit;
+                    seen.hit = true;
+                    seen.reflectance = h.reflectance;
+                    // Its echo (an exponential) only when it disagrees, below.
+                    seen.echo = {h.range_m, 1.0, -1.0, 0.0, h.object_id, o->hit->point_world, h.normal_world, 0};
+                }
+            }
+            const double pu = r.witness_u[w], pv = r.witness_v[w];
+            const Region::Node* leaf = r.leaf_at(pu, pv);
+            if (!leaf || !leaf->kept) continue;
+            r.witness_seen[w].volumes = leaf->seen.volumes;  // probes do not look into media
+            if (agree(leaf->seen, r.witness_seen[w], gap)) continue;
+            if (r.witness_seen[w].hit && r.witness_seen[w].echo.energy_j < 0.0) {
+                const raytrace::Hit& h = *p->hit->hit;
+                r.witness_seen[w].echo.energy_j = echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0);
+            }
+            const Seen& probe = r.witness_seen[w];
+            Region::Node& n = r.nodes[static_cast<std::size_t>(leaf - r.nodes.data())];
+            // The probe's surface, if some sub-ray found it; else a return not seen yet.
+            std::int32_t probe_surface = -1;
+            if (probe.hit) {
+                for (std::size_t e = 0; e < echoes.size() && probe_surface < 0; ++e)
+                    if (echoes[e].object_id == probe.echo.object_id)
+                        probe_surface = static_cast<std::int32_t>(surface_of_echo[e]);
+            }
+            involve(r, n, probe, probe_surface, 0, 0);
+            // Split along the axis the probe lies off the cell's sub-ray (both when alike).
+            const double du = std::abs(pu - n.u) / (n.u1 - n.u0), dv = std::abs(pv - n.v) / (n.v1 - n.v0);
+            n.want |= static_cast<std::uint8_t>((du >= 0.5 * dv ? 1 : 0) | (dv >= 0.5 * du ? 2 : 0));
+            if (!r.media && n.adopt < 0) {
+                n.adopt = static_cast<std::int32_t>(r.probes.size());
+                r.probes.push_back({pu, pv, probe});
+            }
+            // Unseen: settled only if even a whole cell of it could not be detected.
+            if (probe.hit && probe_surface < 0 &&
+                kConfidenceSigmas * 0.5 * n.weight * r.scale * probe.echo.energy_j > tolerance_ * threshold_energy_j(0.0))
+                n.urgent = true;
+        }
+    }
+
+    // Settled when every return's energy is known to the tolerance of itself, or of its pulse's
+    // threshold when weaker (below it, errors decide nothing); else refine the cells bounding an
+    // unsettled return (or an unseen probe's), while they can be.
+    thread_local std::vector<std::uint8_t> unsettled, undecided;
+    unsettled.assign(returns, 0);
+    for (std::size_t g = 0; g < returns; ++g)
+        unsettled[g] = kConfidenceSigmas * std::sqrt(variance[g]) > tolerance_ * std::max(energy[g], threshold[g]);
+    // Whether a return is detected at all depends on its pulse's peak, so on how its energy spreads
+    // in range, which its sub-rays sample: with n of them the spread (and so the threshold) is known
+    // to about 1 / sqrt(n). A return that close to its threshold is undecided: all its cells split.
+    undecided.assign(returns, 0);
+    thread_local std::vector<int> samples_of;
+    samples_of.assign(returns, 0);
+    for (Region* r : regions)
+        for (const Region::Node& n : r->nodes)
+            if (n.leaf() && n.surface >= 0) ++samples_of[static_cast<std::size_t>(n.surface)];
+    for (std::size_t g = 0; g < surfaces.size(); ++g) {
+        if (samples_of[g] == 0) continue;
+        const double margin = 1.5 / std::sqrt(2.0 * samples_of[g]);
+        undecided[g] = std::abs(energy[g] - threshold[g]) < margin * threshold[g];
+    }
+    bool refinable = false;
+    for (Region* r : regions) {
+        if (r->nodes.size() + 4 > r->max_samples) continue;
+        for (Region::Node& n : r->nodes) {
+            if (!n.leaf()) continue;
+            for (const std::int32_t t : n.touches)
+                if (t >= 0 && unsettled[static_cast<std::size_t>(t)]) n.urgent = true;
+            if (n.surface >= 0 && undecided[static_cast<std::size_t>(n.surface)]) {
+                n.urgent = true;
+                n.want |= 3;
+            }
+            const std::uint8_t axes = n.want & ((n.splits_x < kMaxSplits ? 1 : 0) | (n.splits_y < kMaxSplits ? 2 : 0));
+            refinable = refinable || (n.urgent && axes != 0);
+        }
+    }
+    return !refinable;
+}
+
+void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame,
+                                BeamEchoes& out) const {
     const auto& sensor = scenario_.sensor;
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
@@ -325,8 +915,7 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
     traced_.trace(rays, hits);
     out.rays += static_cast<int>(sub_rays.size());
 
-    // Enough blocks per sub-ray that refinement levels never share volume draws.
-    RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame, aim.cell, 64 * first_sample);
+    RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame, aim.cell, 0);
     for (std::size_t i = 0; i < sub_rays.size(); ++i) {
         const double weight = sub_rays[i].weight;
         double fog = 1.0;
@@ -340,11 +929,250 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
         }
         if (!hits[i]) continue;
         const raytrace::Hit& h = *hits[i];
-        const double energy = echo_energy_j(weight, h.reflectance, h.cos_incidence, h.range_m, fog);
-        out.surface.push_back({h.range_m, weight, energy, 0.0, h.object_id,
-                               rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world});
-        if (tally) add_to_tally(*tally, h.object_id, energy);
+        out.surface.push_back({h.range_m, weight, echo_energy_j(weight, h.reflectance, h.cos_incidence, h.range_m, fog), 0.0,
+                               h.object_id, rays[i].origin_world + h.range_m * rays[i].direction, h.normal_world, 0});
     }
+}
+
+namespace {
+
+/// Share of a round Gaussian (per-axis sigma) truncated at radius r on the far side of a chord at
+/// distance d >= 0 from its centre, over its whole truncated mass: the integral over t from d to r
+/// of the normal density at t times the normal mass of the chord's half-length sqrt(r^2 - t^2),
+/// by 32-point Gauss-Legendre quadrature.
+double cap_share(double d, double r, double sigma) {
+    static const std::array<double, 16> x = {0.0483076656877383, 0.1444719615827965, 0.2392873622521371, 0.3318686022821277,
+                                             0.4213512761306353, 0.5068999089322294, 0.5877157572407623, 0.6630442669302152,
+                                             0.7321821187402897, 0.7944837959679424, 0.8493676137325700, 0.8963211557660521,
+                                             0.9349060759377397, 0.9647622555875064, 0.9856115115452684, 0.9972638618494816};
+    static const std::array<double, 16> w = {0.0965400885147278, 0.0956387200792749, 0.0938443990808046, 0.0911738786957639,
+                                             0.0876520930044038, 0.0833119242269467, 0.0781938957870703, 0.0723457941088485,
+                                             0.0658222227763618, 0.0586840934785355, 0.0509980592623762, 0.0428358980222267,
+                                             0.0342738629130214, 0.0253920653092621, 0.0162743947309057, 0.0070186100094701};
+    if (d >= r) return 0.0;
+    auto phi = [](double z) { return std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi); };
+    auto mass = [](double z) { return std::erf(z / std::numbers::sqrt2); };  // P(|s| < z) of a unit normal
+    const double mid = 0.5 * (r + d), half = 0.5 * (r - d);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        for (const double t : {mid - half * x[k], mid + half * x[k]}) sum += w[k] * phi(t / sigma) / sigma * mass(std::sqrt(std::max(0.0, r * r - t * t)) / sigma);
+    }
+    return sum * half / -std::expm1(-0.5 * r * r / (sigma * sigma));
+}
+
+}  // namespace
+
+bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
+                                        const Region* sampled) const {
+    const double gap = scenario_.sensor.receiver.return_gap_m;
+    const double r_max = footprint_.max_offset_rad();
+    const Eigen::Vector3d& origin = scenario_.mount.position_world;
+    struct Point {
+        Eigen::Vector2d offset;
+        Seen seen;
+        int side = -1;  ///< which of the two surfaces
+    };
+    thread_local std::vector<Point> points;
+    thread_local std::vector<raytrace::Ray> rays;
+    thread_local std::vector<std::optional<raytrace::Hit>> hits;
+    points.clear();
+    auto seen_of = [&](const std::optional<raytrace::Hit>& hit, const Eigen::Vector3d& direction) {
+        Seen seen;
+        if (!hit) return seen;
+        seen.hit = true;
+        seen.reflectance = hit->reflectance;
+        seen.cos_incidence = hit->cos_incidence;
+        // Its echo (an exponential) only where it is used.
+        seen.echo = {hit->range_m, 1.0, -1.0, 0.0, hit->object_id, origin + hit->range_m * direction, hit->normal_world, 0};
+        return seen;
+    };
+    auto energy_of = [&](const Seen& s) {
+        return s.echo.energy_j >= 0.0 ? s.echo.energy_j : echo_energy_j(1.0, s.reflectance, s.cos_incidence, s.echo.range_m, 1.0);
+    };
+    auto trace_offsets = [&](std::span<const Eigen::Vector2d> offsets, std::vector<Seen>& seen) {
+        rays.resize(offsets.size());
+        hits.resize(offsets.size());
+        for (std::size_t i = 0; i < offsets.size(); ++i) {
+            rays[i].origin_world = origin;
+            rays[i].direction = aim.world_from_beam * in_beam(offsets[i].x(), offsets[i].y());
+            rays[i].time_s = aim.time_s;
+            rays[i].max_range_m = scenario_.sensor.receiver.max_range_m;
+        }
+        traced_.trace(rays, hits);
+        out.rays += static_cast<int>(offsets.size());
+        if (seen.size() < offsets.size()) seen.resize(offsets.size());  // never shrunk: no re-construction
+        for (std::size_t i = 0; i < offsets.size(); ++i) seen[i] = seen_of(hits[i], rays[i].direction);
+    };
+    // Two surfaces (one may be nothing), each represented by its first point.
+    std::array<const Seen*, 2> surface{nullptr, nullptr};
+    thread_local std::array<Seen, 2> representative;
+    auto side_of = [&](const Seen& s) {
+        for (int k = 0; k < 2; ++k) {
+            if (!surface[static_cast<std::size_t>(k)]) {
+                representative[static_cast<std::size_t>(k)] = s;
+                surface[static_cast<std::size_t>(k)] = &representative[static_cast<std::size_t>(k)];
+                return k;
+            }
+            if (agree(*surface[static_cast<std::size_t>(k)], s, gap)) return k;
+        }
+        return -1;  // a third: not one edge
+    };
+
+    // The rim of the footprint, just inside its truncation, where an edge crossing it enters and
+    // leaves; then the probes inside, which the edge must separate.
+    constexpr int kRim = 12;
+    constexpr int kBisections = 5;
+    const double rim = 0.999 * r_max;
+    thread_local std::vector<Eigen::Vector2d> offsets;
+    thread_local std::vector<Seen> seen;
+    offsets.clear();
+    for (int k = 0; k < kRim; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / kRim;
+        offsets.emplace_back(rim * std::cos(a), rim * std::sin(a));
+    }
+    trace_offsets(offsets, seen);
+    std::array<int, kRim> rim_side{};
+    for (int k = 0; k < kRim; ++k) {
+        rim_side[static_cast<std::size_t>(k)] = side_of(seen[static_cast<std::size_t>(k)]);
+        if (rim_side[static_cast<std::size_t>(k)] < 0) return false;
+        points.push_back({offsets[static_cast<std::size_t>(k)], seen[static_cast<std::size_t>(k)], rim_side[static_cast<std::size_t>(k)]});
+    }
+    for (const Probe* p : witnesses) {
+        if (!footprint_.within_truncation(p->x_rad, p->y_rad)) continue;
+        Point q{{p->x_rad, p->y_rad}, seen_of(p->hit->hit, p->direction_world), -1};
+        q.side = side_of(q.seen);
+        if (q.side < 0) return false;
+        points.push_back(q);
+    }
+    // The rim changes side exactly twice: the edge's two ends. Bisect each in angle.
+    std::array<int, 2> change{-1, -1};
+    int changes = 0;
+    for (int k = 0; k < kRim; ++k) {
+        if (rim_side[static_cast<std::size_t>(k)] == rim_side[static_cast<std::size_t>((k + 1) % kRim)]) continue;
+        if (changes == 2) return false;
+        change[static_cast<std::size_t>(changes++)] = k;
+    }
+    if (changes != 2) return false;
+    std::array<double, 2> lo{}, hi{};
+    for (int c = 0; c < 2; ++c) {
+        lo[static_cast<std::size_t>(c)] = 2.0 * std::numbers::pi * change[static_cast<std::size_t>(c)] / kRim;
+        hi[static_cast<std::size_t>(c)] = lo[static_cast<std::size_t>(c)] + 2.0 * std::numbers::pi / kRim;
+    }
+    const std::array<int, 2> lo_side{rim_side[static_cast<std::size_t>(change[0])], rim_side[static_cast<std::size_t>(change[1])]};
+    for (int step = 0; step < kBisections; ++step) {
+        offsets.clear();
+        for (int c = 0; c < 2; ++c) {
+            const double a = 0.5 * (lo[static_cast<std::size_t>(c)] + hi[static_cast<std::size_t>(c)]);
+            offsets.emplace_back(rim * std::cos(a), rim * std::sin(a));
+        }
+        trace_offsets(offsets, seen);
+        for (int c = 0; c < 2; ++c) {
+            const int side = side_of(seen[static_cast<std::size_t>(c)]);
+            if (side < 0) return false;
+            points.push_back({offsets[static_cast<std::size_t>(c)], seen[static_cast<std::size_t>(c)], side});
+            const double a = 0.5 * (lo[static_cast<std::size_t>(c)] + hi[static_cast<std::size_t>(c)]);
+            (side == lo_side[static_cast<std::size_t>(c)] ? lo : hi)[static_cast<std::size_t>(c)] = a;
+        }
+    }
+    const double a1 = 0.5 * (lo[0] + hi[0]), a2 = 0.5 * (lo[1] + hi[1]);
+    const Eigen::Vector2d p1(rim * std::cos(a1), rim * std::sin(a1)), p2(rim * std::cos(a2), rim * std::sin(a2));
+    // The chord between them, its normal pointing away from the axis: the cap beyond it.
+    Eigen::Vector2d normal(-(p2 - p1).y(), (p2 - p1).x());
+    normal.normalize();
+    double distance = normal.dot(p1);
+    if (distance < 0.0) {
+        normal = -normal;
+        distance = -distance;
+    }
+    // Which surface lies in the cap: the rim's, just past the first end towards the cap.
+    const double a_cap = normal.dot(Eigen::Vector2d(std::cos(lo[0]), std::sin(lo[0]))) > normal.dot(Eigen::Vector2d(std::cos(hi[0]), std::sin(hi[0])))
+                             ? lo[0] : hi[0];
+    const int cap_side = a_cap == lo[0] ? lo_side[0] : 1 - lo_side[0];
+    (void)a_cap;
+    // Every probe must lie on its surface's side (those within a bisection's step of the chord
+    // excepted): else the edge is not straight, or there is more than one.
+    const double margin = 2.0 * rim * 2.0 * std::numbers::pi / kRim / (1 << kBisections) + 1e-3 * r_max;
+    for (const Point& q : points) {
+        const double along = normal.dot(q.offset) - distance;
+        if (std::abs(along) < margin) continue;
+        if ((along > 0.0) != (q.side == cap_side)) return false;
+    }
+    // Each surface takes its share of the beam (exact for a straight edge), spread over the
+    // equal-energy cells on its side (the sampled region's, or the plane-patch quadrature's), each
+    // of which must find that surface; a sliver holding none takes the mean of its points,
+    // weighted by the beam's irradiance.
+    const double cap = cap_share(distance, r_max, 0.5 * footprint_.waist_rad());
+    thread_local std::vector<double> node_weight;
+    offsets.clear();
+    node_weight.clear();
+    std::size_t sampled_cells = 0;
+    if (sampled)
+        for (const Region::Node& n : sampled->nodes) sampled_cells += n.leaf() && n.kept && n.weight > 0.0;
+    if (sampled_cells >= edge_quadrature_.size()) {
+        if (seen.size() < sampled_cells) seen.resize(sampled_cells);
+        for (const Region::Node& n : sampled->nodes) {
+            if (!n.leaf() || !n.kept || n.weight <= 0.0) continue;
+            seen[offsets.size()] = n.seen;
+            offsets.emplace_back(n.x_rad, n.y_rad);
+            node_weight.push_back(n.weight);
+        }
+    } else {
+        offsets.assign(edge_quadrature_.begin(), edge_quadrature_.end());
+        trace_offsets(offsets, seen);
+        node_weight.assign(offsets.size(), 1.0);
+    }
+    std::array<double, 2> weight_on{0.0, 0.0};
+    std::array<int, 2> nodes_on{0, 0};
+    thread_local std::vector<int> node_side;
+    node_side.assign(offsets.size(), -1);
+    for (std::size_t k = 0; k < offsets.size(); ++k) {
+        const double along = normal.dot(offsets[k]) - distance;
+        const int side = side_of(seen[k]);
+        if (side < 0) return false;
+        if (std::abs(along) >= margin && (along > 0.0) != (side == cap_side)) return false;
+        node_side[k] = side;  // by what it met: within the margin, the chord may pass either way
+        weight_on[static_cast<std::size_t>(node_side[k])] += node_weight[k];
+        ++nodes_on[static_cast<std::size_t>(node_side[k])];
+    }
+    for (int side = 0; side < 2; ++side) {
+        if (nodes_on[static_cast<std::size_t>(side)] == 0) continue;
+        if (!surface[static_cast<std::size_t>(side)]->hit) continue;
+        const double share = (side == cap_side ? cap : 1.0 - cap) / weight_on[static_cast<std::size_t>(side)];
+        for (std::size_t k = 0; k < offsets.size(); ++k) {
+            if (node_side[k] != side || !seen[k].hit) continue;
+            SurfaceEcho e = seen[k].echo;
+            e.weight = share * node_weight[k];
+            e.energy_j = energy_of(seen[k]) * e.weight;
+            e.sample = 0;
+            out.surface.push_back(e);
+        }
+    }
+    for (int side = 0; side < 2; ++side) {
+        if (nodes_on[static_cast<std::size_t>(side)] > 0) continue;
+        const Seen& rep = *surface[static_cast<std::size_t>(side)];
+        if (!rep.hit) continue;
+        double g_sum = 0.0, e_sum = 0.0, r_sum = 0.0, r2_sum = 0.0;
+        const Point* nearest = nullptr;
+        for (const Point& q : points) {
+            if (q.side != side) continue;
+            const double g = irradiance(q.offset.x(), q.offset.y());
+            g_sum += g;
+            e_sum += g * energy_of(q.seen);
+            r_sum += g * q.seen.echo.range_m;
+            r2_sum += g * q.seen.echo.range_m * q.seen.echo.range_m;
+            if (!nearest || q.offset.squaredNorm() < nearest->offset.squaredNorm()) nearest = &q;
+        }
+        const double share = side == cap_side ? cap : 1.0 - cap;
+        const double range = r_sum / g_sum;
+        SurfaceEcho e = nearest->seen.echo;
+        e.range_m = range;
+        e.weight = share;
+        e.energy_j = share * e_sum / g_sum;
+        e.sample = 0;
+        e.spread_m = std::sqrt(std::max(0.0, r2_sum / g_sum - range * range));
+        out.surface.push_back(e);
+    }
+    return true;
 }
 
 FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, std::span<const Probe> probes,
@@ -364,6 +1192,7 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     double reflectance_sum = 0.0, g_sum = 0.0;
     for (const Probe& p : probes) {
         if (excluded && footprint_.contains(*excluded, p.x_rad, p.y_rad)) continue;
+        if (!footprint_.within_truncation(p.x_rad, p.y_rad)) continue;  // a sentinel
         used.push_back(&p);
         if (!p.hit->hit) continue;
         const raytrace::Hit& h = *p.hit->hit;

@@ -62,12 +62,17 @@ void FrameRenderer::find_neighbours() {
     const int reach_rows = std::min(static_cast<int>(r_max * ellipticity / row_pitch), raster_.rows());
     const int stride_columns = std::max(1, (reach_columns + 7) / 8);
     const int stride_rows = std::max(1, (reach_rows + 7) / 8);
-    for (int dr = -reach_rows / stride_rows * stride_rows; dr <= reach_rows; dr += stride_rows) {
-        for (int dc = -reach_columns / stride_columns * stride_columns; dc <= reach_columns; dc += stride_columns) {
+    // Beyond the footprint, a ring of sentinels one (thinned) pitch of the denser axis wide:
+    // something they meet may reach into the footprint's rim where no probe inside does.
+    const double sentinel_reach = r_max + std::min(stride_columns * column_pitch, stride_rows * row_pitch / ellipticity);
+    const int sentinel_columns = std::min(static_cast<int>(sentinel_reach / column_pitch), raster_.columns());
+    const int sentinel_rows = std::min(static_cast<int>(sentinel_reach * ellipticity / row_pitch), raster_.rows());
+    for (int dr = -sentinel_rows / stride_rows * stride_rows; dr <= sentinel_rows; dr += stride_rows) {
+        for (int dc = -sentinel_columns / stride_columns * stride_columns; dc <= sentinel_columns; dc += stride_columns) {
             if (dr == 0 && dc == 0) continue;
             // Columns count to the right and rows down; offsets are positive left and up.
             const double x = -dc * column_pitch, y = -dr * row_pitch / ellipticity;
-            if (x * x + y * y <= r_max * r_max) neighbours_.push_back({dr, dc, x, y, integrator_.irradiance(x, y)});
+            if (x * x + y * y <= sentinel_reach * sentinel_reach) neighbours_.push_back({dr, dc, x, y, integrator_.irradiance(x, y)});
         }
     }
     // Where no neighbour reaches half-way to the footprint's edge in some direction (the raster's
@@ -83,6 +88,7 @@ void FrameRenderer::find_neighbours() {
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = column + n.d_column;
                 if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
+                if (n.x_rad * n.x_rad + n.y_rad * n.y_rad > r_max * r_max) continue;  // a sentinel
                 for (int k = 0; k < 4; ++k)
                     if (Eigen::Vector2d(n.x_rad, n.y_rad).dot(extra_offsets_[k].normalized()) >= 0.5 * r_max)
                         covered |= static_cast<std::uint8_t>(1u << k);
@@ -173,7 +179,8 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     return rays.size();
 }
 
-std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::uint64_t& rays) const {
+std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_step, std::uint64_t frame,
+                                               std::uint64_t& rays) const {
     const auto& sensor = scenario_.sensor;
     const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
@@ -184,7 +191,7 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
     thread_local std::vector<DetectedReturn> detected;
     std::vector<Return> returns;
 
-    for (int step = 0; step < raster_.columns(); ++step) {
+    for (int step = first_step; step < end_step; ++step) {
         const RasterBeam beam = raster_.beam(row, step);
         const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
         const BeamAim& a = aims_[cell];
@@ -231,9 +238,6 @@ std::vector<Return> FrameRenderer::trace_row(int row, std::uint64_t frame, std::
             returns.push_back(r);
         }
     }
-    // A triangle sweep fires odd lines right to left; frames list returns by column.
-    std::stable_sort(returns.begin(), returns.end(),
-                     [](const Return& a, const Return& b) { return a.column < b.column; });
     return returns;
 }
 
@@ -290,12 +294,30 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
-    std::vector<std::vector<Return>> by_row(rows);
-    tbb::parallel_for(0, raster_.rows(), [&](int row) {
-        by_row[static_cast<std::size_t>(row)] = trace_row(row, index, rays_by_row[static_cast<std::size_t>(row)]);
+    // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
+    // stretches keep both cores busy.
+    constexpr int kStepsPerTask = 16;
+    const int stretches = (raster_.columns() + kStepsPerTask - 1) / kStepsPerTask;
+    std::vector<std::vector<Return>> by_stretch(rows * static_cast<std::size_t>(stretches));
+    std::vector<std::uint64_t> rays_by_stretch(by_stretch.size(), 0);
+    tbb::parallel_for(0, static_cast<int>(by_stretch.size()), [&](int task) {
+        const int row = task / stretches, first = (task % stretches) * kStepsPerTask;
+        by_stretch[static_cast<std::size_t>(task)] = trace_steps(row, first, std::min(first + kStepsPerTask, raster_.columns()), index,
+                                                                 rays_by_stretch[static_cast<std::size_t>(task)]);
     });
+    std::vector<std::vector<Return>> by_row(rows);
+    for (std::size_t row = 0; row < rows; ++row) {
+        std::vector<Return>& returns = by_row[row];
+        for (int k = 0; k < stretches; ++k) {
+            const auto& piece = by_stretch[row * static_cast<std::size_t>(stretches) + static_cast<std::size_t>(k)];
+            returns.insert(returns.end(), piece.begin(), piece.end());
+        }
+        // A triangle sweep fires odd lines right to left; frames list returns by column.
+        std::stable_sort(returns.begin(), returns.end(), [](const Return& a, const Return& b) { return a.column < b.column; });
+    }
     rays_last_frame_ = 0;
     for (const std::uint64_t r : rays_by_row) rays_last_frame_ += r;
+    for (const std::uint64_t r : rays_by_stretch) rays_last_frame_ += r;
     std::size_t total = 0;
     for (const auto& r : by_row) total += r.size();
     frame.returns.reserve(total);

@@ -1,6 +1,7 @@
 #include "ladarsim/sensor_model/waveform.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -14,6 +15,7 @@ namespace {
 
 constexpr double kWindowSigmas = 6.0;  // pulse tails kept on each side of a cluster of echoes
 constexpr std::size_t kNoiseBank = std::size_t{1} << 18;  // samples: 33 us of receiver noise
+constexpr std::size_t kShortWindow = 2048;  // bins (38 m): built whole, cheaper than bounding it
 
 }  // namespace
 
@@ -62,8 +64,15 @@ void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* nois
     sorted.assign(echoes.begin(), echoes.end());
     std::sort(sorted.begin(), sorted.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
     const double to_time = 2.0 / kSpeedOfLight_mps;
-    double widest = pulse_.sigma_s;
-    for (const Echo& e : sorted) widest = std::max(widest, shape_of(e).sigma_s);
+    double widest = pulse_.sigma_s, peaks = 0.0;
+    for (const Echo& e : sorted) {
+        const PulseShape shape = shape_of(e);
+        widest = std::max(widest, shape.sigma_s);
+        peaks += e.energy_j * shape.peak_per_joule();
+    }
+    // Even with every pulse's peak at one instant the signal stays below the threshold: nothing to
+    // detect (what noise alone crosses is the false-alarm process).
+    if (reach_a(peaks, noise != nullptr) <= apd_.threshold_a()) return;
     const double margin_s = kWindowSigmas * widest;
     for (std::size_t first = 0; first < sorted.size();) {
         std::size_t last = first + 1;
@@ -71,9 +80,97 @@ void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* nois
         const double t0 = sorted[first].range_m * to_time - margin_s;
         const double t1 = sorted[last - 1].range_m * to_time + margin_s;
         const auto bins = static_cast<std::size_t>(std::ceil((t1 - t0) / bin_s_)) + 1;
-        detect_window(std::span(sorted).subspan(first, last - first), t0, bins, noise, pulses);
+        // A long window (a grazing footprint's) is built only where pulses can be detected.
+        if (bins <= kShortWindow) {
+            detect_window(std::span(sorted).subspan(first, last - first), t0, bins, noise, pulses);
+        } else {
+            for (const LiveSpan& live : live_spans(std::span(sorted).subspan(first, last - first), t0, bins, noise != nullptr))
+                detect_window(std::span(sorted).subspan(first + live.first_echo, live.echoes), t0 + live.first_bin * bin_s_,
+                              live.bins, noise, pulses);
+        }
         first = last;
     }
+}
+
+double WaveformReceiver::reach_a(double power_w, bool noisy) const {
+    return apd_.amps_per_watt() * power_w + (noisy ? 2.0 * apd_.noise_a(power_w) : 0.0);
+}
+
+std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<const Echo> echoes, double t0_s, std::size_t bins,
+                                                                     bool noisy) const {
+    // An upper bound of the noise-free signal on a coarse grid, each echo's pulse bounded by a
+    // staircase (its peak within one sigma of its centre, exp(-k^2 / 2) of it from k sigmas, and
+    // nothing beyond the kWindowSigmas the waveform keeps), summed with a difference array: a
+    // handful of operations per echo however far its pulse is stretched.
+    constexpr std::size_t kCoarse = 32;  // fine bins per coarse bin: 4 ns, 0.6 m
+    const double to_time = 2.0 / kSpeedOfLight_mps;
+    const double coarse_s = kCoarse * bin_s_;
+    const std::size_t coarse = bins / kCoarse + 1;
+    thread_local std::vector<double> bound;
+    bound.assign(coarse + 1, 0.0);
+    auto add = [&](double a_s, double b_s, double value) {
+        const auto c0 = static_cast<std::size_t>(std::clamp(std::floor((a_s - t0_s) / coarse_s), 0.0, double(coarse - 1)));
+        const auto c1 = static_cast<std::size_t>(std::clamp(std::floor((b_s - t0_s) / coarse_s), 0.0, double(coarse - 1)));
+        bound[c0] += value;
+        bound[c1 + 1] -= value;
+    };
+    static const std::array<double, 6> kStairs = {1.0, std::exp(-0.5), std::exp(-2.0), std::exp(-4.5), std::exp(-8.0), std::exp(-12.5)};
+    static_assert(kWindowSigmas == 6.0);
+    thread_local std::vector<double> reach_begin, reach_end;
+    reach_begin.resize(echoes.size());
+    reach_end.resize(echoes.size());
+    for (std::size_t i = 0; i < echoes.size(); ++i) {
+        const PulseShape shape = shape_of(echoes[i]);
+        const double te = echoes[i].range_m * to_time, peak = echoes[i].energy_j * shape.peak_per_joule();
+        reach_begin[i] = te - kWindowSigmas * shape.sigma_s;
+        reach_end[i] = te + kWindowSigmas * shape.sigma_s;
+        if (reach_end[i] - reach_begin[i] <= coarse_s) {
+            add(reach_begin[i], reach_end[i], peak);  // within a coarse bin or two: its peak bounds it
+            continue;
+        }
+        for (int k = 0; k < 6; ++k) {
+            const double value = peak * kStairs[static_cast<std::size_t>(k)];
+            add(te + k * shape.sigma_s, te + (k + 1) * shape.sigma_s, value);
+            add(te - (k + 1) * shape.sigma_s, te - k * shape.sigma_s, value);
+        }
+    }
+    for (std::size_t c = 1; c < coarse; ++c) bound[c] += bound[c - 1];
+
+    // Only where the signal (with two noise sigmas, when noisy: reach_a) can reach half the threshold can a
+    // pulse's excursion be (it starts above the threshold and ends below half of it); a stretch
+    // that never reaches the threshold itself holds no pulse. Elsewhere the waveform is not built:
+    // a noise-free one would be below the release level there, and a noisy one crosses the
+    // threshold at the rate of noise alone, which the false-alarm process already draws.
+    auto reach = [&](double power_w) { return reach_a(power_w, noisy); };
+    const double release = 0.5 * apd_.threshold_a(), threshold = apd_.threshold_a();
+    std::vector<LiveSpan> spans;
+    for (std::size_t c = 0; c < coarse;) {
+        if (reach(bound[c]) <= release) {
+            ++c;
+            continue;
+        }
+        std::size_t end = c;
+        bool crosses = false;
+        for (; end < coarse && reach(bound[end]) > release; ++end) crosses = crosses || reach(bound[end]) > threshold;
+        if (crosses) {
+            // One coarse bin of margin each side, where the signal is below the release level.
+            const std::size_t b0 = (c > 0 ? c - 1 : 0) * kCoarse;
+            const std::size_t b1 = std::min(bins, (end + 1) * kCoarse);
+            const double s0 = t0_s + b0 * bin_s_, s1 = t0_s + b1 * bin_s_;
+            // The echoes whose kept tails reach into the span.
+            std::size_t first = 0, last = 0;
+            bool any = false;
+            for (std::size_t i = 0; i < echoes.size(); ++i) {
+                if (reach_end[i] < s0 || reach_begin[i] > s1) continue;
+                if (!any) first = i;
+                last = i + 1;
+                any = true;
+            }
+            if (any) spans.push_back({b0, b1 - b0, first, last - first});
+        }
+        c = end;
+    }
+    return spans;
 }
 
 void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
@@ -147,7 +244,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     y.resize(bins);
     const double saturation = apd_.saturation_a();
     for (std::size_t k = 0; k < bins; ++k)
-        y[k] = std::min(amps_per_watt * power[k] + apd_.noise_a(power[k]) * n[k], saturation);
+        y[k] = std::min(amps_per_watt * power[k] + (noise ? apd_.noise_a(power[k]) * n[k] : 0.0), saturation);
 
     const double threshold = apd_.threshold_a();
     const double floor_noise = apd_.noise_floor_a();
@@ -182,18 +279,26 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
             t_cross = t0_s + (static_cast<double>(k - 1) + f) * bin_s_;
         }
         const double t_peak = t0_s + (static_cast<double>(peak) + offset) * bin_s_;
-        // Which surface made it: the largest noise-free contribution at the peak.
-        std::fill(contribution.begin(), contribution.end(), 0.0);
-        for (std::size_t j = 0; j < echoes.size(); ++j)
-            contribution[echoes[j].surface] += echoes[j].energy_j * shapes[j].at(t_peak - echoes[j].range_m * to_time);
-        std::uint32_t surface = kNoSurface;
-        double best = 0.0;
-        for (std::uint32_t i = 0; i < surfaces; ++i) {
-            if (contribution[i] > best) {
-                best = contribution[i];
-                surface = i;
+        // Which surface made it: the one whose echo sets the range, i.e. the largest noise-free
+        // contribution at the 50 % crossing the range is timed from (a narrow pulse on another
+        // surface's broad pedestal is timed from the pedestal's edge when that edge crosses first).
+        // Where no echo reaches the crossing (noise), the largest at the peak.
+        auto strongest_at = [&](double t) {
+            std::fill(contribution.begin(), contribution.end(), 0.0);
+            for (std::size_t j = 0; j < echoes.size(); ++j)
+                contribution[echoes[j].surface] += echoes[j].energy_j * shapes[j].at(t - echoes[j].range_m * to_time);
+            std::uint32_t strongest = kNoSurface;
+            double best = 0.0;
+            for (std::uint32_t i = 0; i < surfaces; ++i) {
+                if (contribution[i] > best) {
+                    best = contribution[i];
+                    strongest = i;
+                }
             }
-        }
+            return strongest;
+        };
+        std::uint32_t surface = strongest_at(t_cross);
+        if (surface == kNoSurface) surface = strongest_at(t_peak);
         const double signal = amps_per_watt * power[peak];
         // A peak the echoes barely touch is the noise's, not theirs.
         if (signal < floor_noise) surface = kNoSurface;

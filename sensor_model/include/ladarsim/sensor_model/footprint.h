@@ -39,11 +39,10 @@ struct FootprintRect {
 /// exactly 1/N. A sub-ray sits at the energy median of its cell (on the axis when N = 1), or, with
 /// jitter, at a point drawn from the Gaussian restricted to its cell (an unbiased estimate).
 ///
-/// Grids (`grid`): adaptive sampling cuts a region into an n x n grid of equal-energy cells, each
-/// sub-ray weighted by the exact energy of its cell: the whole footprint in (energy, angle), or a
-/// rectangle (the outline of a small target, so that sub-rays are spent only where it can be) in
-/// (x, y), where the Gaussian is separable; a rectangle cell whose sub-ray falls beyond the
-/// truncation radius is given weight 0.
+/// Adaptive sampling cuts rectangles of offsets (the square around the footprint, or the outline
+/// of a small target) into cells of equal energy in (x, y), where the Gaussian is separable
+/// (`axis_cdf`, `cell_weight`); a cell whose sub-ray falls beyond the truncation radius carries no
+/// energy.
 class Footprint {
 public:
     Footprint(double divergence_rad, int samples, double truncation);
@@ -57,16 +56,23 @@ public:
     /// Fills `out` with one jittered sub-ray per cell; u[i] are two uniforms in (0, 1] per cell.
     void jittered(std::span<SubRay> out, std::span<const double> uniforms) const;
 
-    /// The whole truncated footprint.
-    FootprintRegion whole() const;
-    /// n x n grid over a region, cell (i, j) at index i * n + j, sub-rays at the cell medians or
-    /// jittered when `uniforms` (two per cell) are given.
-    void grid(const FootprintRegion& region, int n, std::span<SubRay> out, std::span<const double> uniforms = {}) const;
-
     /// A rectangle clipped to the square around the truncated footprint; empty when outside it.
     std::optional<FootprintRect> clip(const FootprintRect& rect) const;
+    /// The square around the truncated footprint.
+    FootprintRect square() const;
     bool contains(const FootprintRect& rect, double x_rad, double y_rad) const;
-    void grid(const FootprintRect& rect, int n, std::span<SubRay> out, std::span<const double> uniforms = {}) const;
+    bool within_truncation(double x_rad, double y_rad) const {
+        return x_rad * x_rad + y_rad * y_rad <= max_radius_rad_ * max_radius_rad_;
+    }
+
+    /// The separable form of the Gaussian: each axis is a normal distribution of sigma = w / 2, and
+    /// cells between equal steps of its CDF, Phi(offset / sigma), carry equal energy. The CDF at an
+    /// offset, and the offset at a CDF value.
+    double axis_cdf(double offset_rad) const;
+    double axis_offset(double cdf) const;
+    /// Share of the (truncated, renormalised) beam's energy in a cell spanning `d_cdf_x` x
+    /// `d_cdf_y` of the two axis CDFs.
+    double cell_weight(double d_cdf_x, double d_cdf_y) const { return d_cdf_x * d_cdf_y / captured_; }
 
 private:
     SubRay place(const FootprintRegion& cell, double u_energy, double u_angle, double weight) const;

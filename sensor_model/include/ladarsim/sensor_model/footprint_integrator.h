@@ -24,18 +24,23 @@ struct SurfaceEcho {
     std::uint32_t object_id;
     Eigen::Vector3d point_world;
     Eigen::Vector3f normal_world;
+    std::uint32_t sample = 0;  ///< which sub-ray made it, for the integrator's bookkeeping
 };
 
-/// Groups echoes (sorted here by range) into the distinct surfaces along a beam. Two neighbours in
-/// range are one surface when within `gap_m`, or when they lie on one object's continuous surface:
-/// each within the gap (plus a bend of 5 deg over their separation) of the other's tangent plane
-/// (a surface seen at grazing incidence spans metres in range and would otherwise break into one
-/// return per sub-ray). Each echo's pulse is stretched to reach half-way to its neighbours in
-/// range, so that the result does not depend on how densely the surface was sampled. A surface is
-/// named after the object carrying most of its energy.
-std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m);
+/// Groups echoes (sorted here by object and range) into the distinct surfaces along a beam, each
+/// of one object. Two of its echoes, neighbours in range, are one surface when within `gap_m`, or
+/// when they lie on one continuous surface: each within the gap (plus a bend of 5 deg over their
+/// separation) of the other's tangent plane (a surface seen at grazing incidence spans metres in
+/// range and would otherwise break into one return per sub-ray). Each echo's pulse is stretched to
+/// reach half-way to its neighbours in range, so that the result does not depend on how densely
+/// the surface was sampled. Echoes of different objects are never one surface, however close: their
+/// pulses merge in the waveform, which names a merged return after the object that sets its range.
+/// With `surface_of_echo`, also which surface each echo (in the sorted order) went to.
+std::vector<BeamSurface> gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m,
+                                         std::vector<std::uint32_t>* surface_of_echo = nullptr);
 /// The same into `surfaces`, whose elements (and their echo lists) are reused.
-void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces);
+void gather_surfaces(std::vector<SurfaceEcho>& echoes, double gap_m, std::vector<BeamSurface>& surfaces,
+                     std::vector<std::uint32_t>* surface_of_echo = nullptr);
 
 /// Where one beam points and when it fires.
 struct BeamAim {
@@ -60,7 +65,8 @@ struct ProbeHit {
 };
 
 /// A ray traced ahead for a beam: the beam's own axis, a neighbouring beam's axis that falls
-/// inside its footprint, or an extra ray where the raster leaves the footprint uncovered.
+/// inside its footprint, or an extra ray where the raster leaves the footprint uncovered; or a
+/// sentinel, a neighbouring axis just beyond the footprint's truncation.
 struct Probe {
     double x_rad, y_rad;  ///< offset from the beam axis, in footprint coordinates
     double irradiance;    ///< the beam's relative irradiance there, exp(-2 r^2 / w^2)
@@ -81,9 +87,12 @@ struct BeamEchoes {
 ///    whether the footprint lies on one plane, then integrated without rays; objects small enough
 ///    to hide between probes, or moving, are found by testing the beam's cone against their
 ///    bounding spheres and sampled only inside the part of the footprint they can occupy; media are
-///    sampled only where the cone meets them. Where sampling is needed, a grid of 2 x 2 cells is
-///    refined (x 4 cells per level, up to 32 x 32) until two successive levels agree on each
-///    object's energy within `footprint_tolerance`.
+///    sampled only where the cone meets them. Where sampling is needed, cells of equal energy (2 x 2
+///    to start, 4 x 4 in a target's outline) split, along the axis across which they disagree, where neighbouring sub-rays, or a
+///    probe and the sub-ray of its cell, disagree (another object, another surface, nothing, another
+///    medium, or half the echo), until what the receiver reports is settled: each return's energy known to
+///    `footprint_tolerance` of itself, or of its (stretched) pulse's threshold when weaker
+///    (docs/sensor.md, "Footprint and returns").
 class FootprintIntegrator {
 public:
     FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced, const BeamReceiver& receiver);
@@ -100,43 +109,52 @@ public:
     /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
     void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
 
-    /// Energy a sampled region sent back from one object.
-    struct Tally {
-        std::uint32_t object_id;
-        double energy_j;
-    };
+    /// One rectangle of the footprint being refined, with its tree of cells (defined in the .cpp).
+    struct Region;
 
 private:
-    /// Two uniforms per cell for jittering `cells` cells, keyed by (frame, beam, first_sample);
-    /// empty without jitter.
-    std::span<const double> jitter(const BeamAim& aim, std::uint64_t frame, std::uint32_t first_sample,
-                                   std::size_t cells) const;
-    /// Samples `region` (minus `excluded`) until converged. With `share` > 0 the sampled cells carry
-    /// that share of the beam, otherwise their own energy. Returns the share sampled.
-    template <class Region>
-    double sample(const BeamAim& aim, const Region& region, const std::optional<FootprintRect>& excluded, double share,
-                  bool media, std::uint64_t frame, BeamEchoes& out) const;
-    /// Traces sub-rays, appending their echoes, and tallies each object's energy.
-    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame,
-               std::uint32_t first_sample, BeamEchoes& out, std::vector<Tally>* tally) const;
+    /// Refines the regions together until the returns they give, with the echoes already in
+    /// `out`, are settled; their echoes are appended to `out`. `witnesses`: probes whose hits the
+    /// sub-rays of their cells must agree with. `try_edge`: when the first cells do not settle,
+    /// try one straight edge (straight_edge) before refining them.
+    void refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses, bool media,
+                std::uint64_t frame, BeamEchoes& out, bool try_edge = false) const;
+    /// Traces the sub-rays of the regions not traced yet.
+    void trace_samples(const BeamAim& aim, std::span<Region* const> regions, bool media, std::uint64_t frame, BeamEchoes& out) const;
+    /// Whether the returns are settled; if not, marks the sub-rays to split. `echoes` is scratch.
+    bool settled(std::span<Region* const> regions, std::span<const Probe* const> witnesses,
+                 std::vector<SurfaceEcho>& echoes, const std::vector<BeamSurface>& volumes) const;
+    /// Traces fixed sub-rays (brute force), appending their echoes.
+    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, BeamEchoes& out) const;
     enum class Patch { empty, plane, mixed };
     /// The footprint outside `excluded` (share `weight`) as one plane, from the probes outside it.
     Patch plane_patch(const BeamAim& aim, std::span<const Probe> probes, const std::optional<FootprintRect>& excluded,
                       double weight, BeamEchoes& out) const;
+    /// The footprint as two surfaces (one may be nothing) parted by one straight edge: the rim of
+    /// the footprint is sampled for the edge's two ends (each then bisected), every probe must lie
+    /// on its surface's side of the chord between them, and each surface takes the beam's exact
+    /// share beyond or before the chord (a closed form of the truncated Gaussian), spread over the
+    /// cells of `sampled` (a whole footprint's first cells, when there are enough) or the
+    /// equal-energy quadrature on its side. False (and nothing appended) where that does not hold:
+    /// a corner, a curved edge, more surfaces.
+    bool straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
+                       const Region* sampled = nullptr) const;
     double echo_energy_j(double weight, double reflectance, double cos_incidence, double range_m, double fog) const;
+    /// Echo energy at which a pulse stretched by a range spread of `spread_m` peaks at the threshold.
+    double threshold_energy_j(double spread_m) const;
 
     const Scenario& scenario_;
     const raytrace::TracedScene& traced_;
     const BeamReceiver& receiver_;
     bool adaptive_;
     double tolerance_;
-    double floor_energy_j_;     ///< errors far below the detection threshold change nothing
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;
+    std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
 };
 
 }  // namespace ladarsim::sensor_model

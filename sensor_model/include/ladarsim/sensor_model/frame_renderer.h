@@ -44,7 +44,8 @@ public:
     raytrace::TracedScene& traced() { return traced_; }
 
 private:
-    /// A neighbouring beam whose axis falls inside a beam's footprint: raster steps and offset.
+    /// A neighbouring beam whose axis falls inside a beam's footprint (or just beyond it, a
+    /// sentinel): raster steps and offset.
     struct Neighbour {
         int d_row, d_column;
         double x_rad, y_rad;
@@ -56,8 +57,9 @@ private:
     /// Pass 1: where and when the beams of one raster line fire and, for adaptive footprints,
     /// their axes and extra probes traced. Returns the rays traced.
     std::uint64_t aim_row(int row, GimbalPointing pointing, double frame_start_s);
-    /// Pass 2: all returns of one raster line, in column order; adds the rays traced to `rays`.
-    std::vector<Return> trace_row(int row, std::uint64_t frame, std::uint64_t& rays) const;
+    /// Pass 2: the returns of steps [first_step, end_step) of one raster line, in firing order; adds
+    /// the rays traced to `rays`.
+    std::vector<Return> trace_steps(int row, int first_step, int end_step, std::uint64_t frame, std::uint64_t& rays) const;
     std::vector<GroundTruthObject> ground_truth(double time_s, const std::vector<Return>& returns) const;
     GimbalPointing cue_pointing(double time_s) const;
 

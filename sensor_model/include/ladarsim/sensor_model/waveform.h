@@ -29,7 +29,10 @@ struct DetectedPulse {
     double peak_a;           ///< measured peak current (noise included, clipped at saturation)
     double snr;              ///< noise-free signal current at the peak over the noise there
     bool saturated;
-    std::uint32_t surface;   ///< the surface contributing most signal at the peak; kNoSurface for noise
+    /// The surface whose echo sets the range: the one contributing most signal at the 50 %
+    /// crossing the range is timed from (at the peak where none reaches the crossing); kNoSurface
+    /// for noise.
+    std::uint32_t surface;
 };
 
 class WaveformReceiver {
@@ -55,6 +58,17 @@ public:
     const PulseShape& pulse() const { return pulse_; }
 
 private:
+    /// A stretch of a window where pulses can be detected: its bins and the echoes reaching it.
+    struct LiveSpan {
+        std::size_t first_bin, bins;
+        std::size_t first_echo, echoes;
+    };
+    /// The stretches of a window of `bins` bins from `t0_s` (echoes sorted by range) where the
+    /// signal can cross the threshold.
+    std::vector<LiveSpan> live_spans(std::span<const Echo> echoes, double t0_s, std::size_t bins, bool noisy) const;
+    /// The most the waveform's current can reach with `power_w` of signal: the signal plus two
+    /// noise sigmas when noisy (a pulse needs more than the threshold to be detected).
+    double reach_a(double power_w, bool noisy) const;
     PulseShape shape_of(const Echo& e) const;
     void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
                        std::vector<DetectedPulse>& out) const;
