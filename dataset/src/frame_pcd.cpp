@@ -47,7 +47,7 @@ void set_position(Return& r, double value) {
 double get_source(const Return& r) { return static_cast<double>(static_cast<std::uint8_t>(r.source)); }
 void set_source(Return& r, double value) { r.source = static_cast<ReturnSource>(static_cast<std::uint8_t>(value)); }
 
-constexpr std::array<ReturnField, 15> kReturnFields{{
+constexpr std::array<ReturnField, 16> kReturnFields{{
     {"x", 'F', 4, get_position<0>, set_position<0>},
     {"y", 'F', 4, get_position<1>, set_position<1>},
     {"z", 'F', 4, get_position<2>, set_position<2>},
@@ -63,6 +63,7 @@ constexpr std::array<ReturnField, 15> kReturnFields{{
     {"snr", 'F', 4, get_member<&Return::snr>, set_member<&Return::snr>},
     {"source", 'U', 1, get_source, set_source},
     {"pulse_offset", 'U', 1, get_member<&Return::pulse_offset>, set_member<&Return::pulse_offset>},
+    {"saturated", 'U', 1, get_member<&Return::saturated>, set_member<&Return::saturated>},
 }};
 
 /// A Return field and where the cloud holds it.

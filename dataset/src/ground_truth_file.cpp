@@ -55,6 +55,7 @@ GroundTruthObject read_object(const nlohmann::json& json, const std::string& fil
     o.time_s = f.number("time_s", -kAnyNumber, kAnyNumber);
     o.returns = static_cast<std::uint32_t>(f.integer("returns", 0, kMaxUint32));
     o.folded_returns = static_cast<std::uint32_t>(f.integer("folded_returns", 0, kMaxUint32, 0));
+    o.saturated_returns = static_cast<std::uint32_t>(f.integer("saturated_returns", 0, kMaxUint32, 0));
     o.box_world = read_box(f, "box_world");
     o.box_sensor = read_box(f, "box_sensor");
     f.reject_unknown_keys();
@@ -80,6 +81,7 @@ FrameGroundTruth read_frame(const nlohmann::json& json, const std::string& file,
 nlohmann::json ground_truth_object_json(const GroundTruthObject& o) {
     return {{"id", o.object_id},       {"class", o.object_class},   {"name", o.name},
             {"time_s", o.time_s},      {"returns", o.returns},      {"folded_returns", o.folded_returns},
+            {"saturated_returns", o.saturated_returns},
             {"box_world", box_json(o.box_world)}, {"box_sensor", box_json(o.box_sensor)}};
 }
 

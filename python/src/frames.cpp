@@ -92,9 +92,10 @@ void bind_frames(py::module_& m) {
 
 points        NumPy structured array, one record per return, the fields and types of the
               frame's PCD file (x y z intensity range_m time_s beam_az beam_el column row
-              return_index object_id snr source pulse_offset; sensor frame, metres, radians)
-range_image   dict of the EXR's channels (Y, range_m, intensity, object_id), each a rows x columns
-              array of the first return of every beam, row 0 the top line; None without an EXR
+              return_index object_id snr source pulse_offset saturated; sensor frame, metres, radians)
+range_image   dict of the EXR's channels (Y, range_m, intensity, object_id of the first return of
+              every beam; strongest_range_m, strongest_intensity of its most intense), each a
+              rows x columns array, row 0 the top line; None without an EXR
 ground_truth  list of the frame's objects as ground_truth.json holds them; None without one
 time_s        mid-scan time (the ground truth's poses are at it); start_time_s, end_time_s)")
         .def_readonly("index", &PythonFrame::index)

@@ -235,6 +235,7 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
             r.object_id = d.object_id;
             r.source = d.source;
             r.pulse_offset = d.pulse_offset;
+            r.saturated = d.saturated;
             returns.push_back(r);
         }
     }
@@ -262,6 +263,7 @@ std::vector<GroundTruthObject> FrameRenderer::ground_truth(double time_s, const 
             if (r.object_id != object.id) continue;
             ++g.returns;
             if (r.pulse_offset > 0) ++g.folded_returns;
+            if (r.saturated) ++g.saturated_returns;
         }
         truth.push_back(std::move(g));
     }

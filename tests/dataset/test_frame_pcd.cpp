@@ -64,6 +64,7 @@ Frame sample_frame() {
     c.snr = 5.5f;
     c.source = ReturnSource::false_alarm;
     c.pulse_offset = 255;
+    c.saturated = true;
     frame.returns = {a, b, c};
     return frame;
 }
@@ -87,6 +88,7 @@ void check_identical(const Return& got, const Return& want) {
     CHECK(same_bits(got.snr, want.snr));
     CHECK(got.source == want.source);
     CHECK(got.pulse_offset == want.pulse_offset);
+    CHECK(got.saturated == want.saturated);
 }
 
 std::string contents(const std::filesystem::path& path) {
@@ -111,28 +113,29 @@ InputError error_of(const std::filesystem::path& path) {
 
 }  // namespace
 
-TEST_CASE("the header is PCD v0.7 as specified and the data 55 packed bytes a point", "[frame_pcd]") {
+TEST_CASE("the header is PCD v0.7 as specified and the data 56 packed bytes a point", "[frame_pcd]") {
     const ScratchDir dir;
     write_frame_pcd(dir / "f.pcd", sample_frame());
     const std::string header =
         "# .PCD v0.7 - Point Cloud Data file format\n"
         "VERSION 0.7\n"
         "FIELDS x y z intensity range_m time_s beam_az beam_el column row return_index object_id snr source "
-        "pulse_offset\n"
-        "SIZE 4 4 4 4 8 8 4 4 2 2 1 4 4 1 1\n"
-        "TYPE F F F F F F F F U U U U F U U\n"
-        "COUNT 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1\n"
+        "pulse_offset saturated\n"
+        "SIZE 4 4 4 4 8 8 4 4 2 2 1 4 4 1 1 1\n"
+        "TYPE F F F F F F F F U U U U F U U U\n"
+        "COUNT 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1\n"
         "WIDTH 3\n"
         "HEIGHT 1\n"
         "VIEWPOINT 0 0 0 1 0 0 0\n"
         "POINTS 3\n"
         "DATA binary\n";
     const std::string bytes = contents(dir / "f.pcd");
-    REQUIRE(bytes.size() == header.size() + 3 * 55);
+    REQUIRE(bytes.size() == header.size() + 3 * 56);
     CHECK(bytes.substr(0, header.size()) == header);
-    // Point 2's object_id (bytes 45-48 of its 55, little-endian), then its source (2) and pulse offset (255).
-    CHECK(bytes.substr(bytes.size() - 10, 4) == std::string(4, '\xFF'));
-    CHECK(bytes.substr(bytes.size() - 2) == std::string("\x02\xFF"));
+    // Point 2's object_id (bytes 45-48 of its 56, little-endian), then its source (2), pulse offset
+    // (255) and saturation flag (1).
+    CHECK(bytes.substr(bytes.size() - 11, 4) == std::string(4, '\xFF'));
+    CHECK(bytes.substr(bytes.size() - 3) == std::string("\x02\xFF\x01"));
 }
 
 TEST_CASE("round trip: every field of every return comes back bit-identical", "[frame_pcd]") {
@@ -153,7 +156,7 @@ TEST_CASE("PCL reads our file: width, field layout and values decoded by hand", 
     REQUIRE(pcl::io::loadPCDFile((dir / "f.pcd").string(), cloud) == 0);
     CHECK(cloud.width == 3);
     CHECK(cloud.height == 1);
-    CHECK(cloud.point_step == 55);
+    CHECK(cloud.point_step == 56);
 
     struct Expected {
         const char* name;
@@ -167,6 +170,7 @@ TEST_CASE("PCL reads our file: width, field layout and values decoded by hand", 
         {"beam_az", F::FLOAT32, 32}, {"beam_el", F::FLOAT32, 36}, {"column", F::UINT16, 40},
         {"row", F::UINT16, 42},      {"return_index", F::UINT8, 44}, {"object_id", F::UINT32, 45},
         {"snr", F::FLOAT32, 49},     {"source", F::UINT8, 53},     {"pulse_offset", F::UINT8, 54},
+        {"saturated", F::UINT8, 55},
     };
     REQUIRE(cloud.fields.size() == std::size(expected));
     for (std::size_t i = 0; i < std::size(expected); ++i) {
@@ -193,6 +197,8 @@ TEST_CASE("PCL reads our file: width, field layout and values decoded by hand", 
     CHECK(at<float>(cloud, 0, 49) == 12.25f);
     CHECK(at<std::uint8_t>(cloud, 2, 53) == 2);
     CHECK(at<std::uint8_t>(cloud, 2, 54) == 255);
+    CHECK(at<std::uint8_t>(cloud, 2, 55) == 1);
+    CHECK(at<std::uint8_t>(cloud, 1, 55) == 0);
 }
 
 TEST_CASE("an empty frame is a valid PCD with no points", "[frame_pcd]") {
@@ -205,7 +211,7 @@ TEST_CASE("an empty frame is a valid PCD with no points", "[frame_pcd]") {
     pcl::PCLPointCloud2 cloud;
     REQUIRE(pcl::io::loadPCDFile((dir / "empty.pcd").string(), cloud) == 0);
     CHECK(cloud.width == 0);
-    CHECK(cloud.fields.size() == 15);
+    CHECK(cloud.fields.size() == 16);
     CHECK(cloud.data.empty());
 }
 

@@ -45,6 +45,39 @@ TEST_CASE("a wall filling every footprint: one return per beam at the closed-for
     CHECK(f.returns.front().beam_el_rad > f.returns.back().beam_el_rad);
 }
 
+TEST_CASE("a wall bright enough to clip the detector: every return flagged and read at the clip level", "[frame_renderer][saturation]") {
+    Scenario s = closed_form_scenario();
+    const double distance_m = 100.0, reflectance = 0.5;
+    s.scene.objects.push_back(object_at(1, plate(50.0, reflectance), fixed_at(distance_m, 0, 0)));
+    // The wall's echo on the boresight, unclipped, and the photo-electrons a pulse of that shape
+    // reads as when its peak current is I_sat: I_sat sigma sqrt(2 pi) / (gain q), sigma the
+    // Gaussian pulse's (FWHM / (2 sqrt(2 ln 2))).
+    const double full = extended_target_photoelectrons(s.sensor, reflectance, 1.0, distance_m);
+    const double sigma_s = s.sensor.transmitter.pulse_width_ns * 1e-9 / (2.0 * std::sqrt(2.0 * std::log(2.0)));
+    const double per_amp = sigma_s * std::sqrt(2.0 * M_PI) / (s.sensor.receiver.apd_gain * 1.602176634e-19);
+
+    SECTION("clip at half the echo: every beam saturated, all at the clip level, counted in the ground truth") {
+        s.sensor.receiver.saturation_current_a = 0.5 * full / per_amp;
+        FrameRenderer renderer(s);
+        const Frame f = renderer.render(0);
+        REQUIRE(f.returns.size() == 150u * 20u);
+        for (const auto& r : f.returns) {
+            REQUIRE(r.saturated);
+            CHECK(r.intensity == Approx(0.5 * full).epsilon(1e-5));
+        }
+        REQUIRE(f.ground_truth.size() == 1);
+        CHECK(f.ground_truth[0].saturated_returns == f.ground_truth[0].returns);
+    }
+    SECTION("clip at twice the echo (the wall's edge beams see a little less): none saturated") {
+        s.sensor.receiver.saturation_current_a = 2.0 * full / per_amp;
+        FrameRenderer renderer(s);
+        const Frame f = renderer.render(0);
+        REQUIRE(f.returns.size() == 150u * 20u);
+        for (const auto& r : f.returns) REQUIRE_FALSE(r.saturated);
+        CHECK(f.ground_truth[0].saturated_returns == 0);
+    }
+}
+
 TEST_CASE("a plate in front of a wall splits each footprint's energy between two returns", "[frame_renderer]") {
     Scenario s = closed_form_scenario();
     s.render.jitter = false;

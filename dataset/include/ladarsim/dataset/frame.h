@@ -40,6 +40,9 @@ struct Return {
     /// Ground truth of range folding: pulse periods between the pulse that made the return and
     /// the pulse whose range gate received it (the true range is range_m + this x c / (2 PRF)).
     std::uint8_t pulse_offset = 0;
+    /// The detector's output clipped at its saturation current: `intensity` is the clip level, a
+    /// lower bound of the echo (a real sensor knows this; its flag reports it).
+    bool saturated = false;
 };
 
 /// Axis-aligned in the object's own frame, then placed by a pose: an oriented 3-D box.
@@ -59,6 +62,7 @@ struct GroundTruthObject {
     OrientedBox box_sensor;
     std::uint32_t returns = 0;    ///< returns in the frame whose object_id is this object
     std::uint32_t folded_returns = 0;  ///< of those, reported at a folded (ambiguous) range
+    std::uint32_t saturated_returns = 0;  ///< of those, clipped at the detector's saturation
 };
 
 struct Frame {

@@ -11,9 +11,9 @@ namespace ladarsim {
 /// The returns as the cloud write_frame_pcd writes: one point per return, the fields below.
 PcdCloud frame_pcd_cloud(const std::vector<Return>& returns);
 
-/// Writes the frame's returns as a binary PCD, one point per return, packed (55 bytes a point):
+/// Writes the frame's returns as a binary PCD, one point per return, packed (56 bytes a point):
 ///   x y z intensity (F4), range_m time_s (F8), beam_az beam_el (F4, rad), column row (U2),
-///   return_index (U1), object_id (U4), snr (F4), source pulse_offset (U1);
+///   return_index (U1), object_id (U4), snr (F4), source pulse_offset saturated (U1);
 /// WIDTH = returns, HEIGHT = 1, VIEWPOINT at the sensor origin. Atomic (see AtomicFile).
 void write_frame_pcd(const std::filesystem::path& path, const Frame& frame);
 

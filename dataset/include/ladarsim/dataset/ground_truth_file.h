@@ -27,7 +27,7 @@ struct FrameGroundTruth {
 FrameGroundTruth ground_truth_of(const Frame& frame);
 
 /// One object of a frame as ground_truth.json holds it: {"id", "class", "name", "time_s",
-/// "returns", "folded_returns", "box_world", "box_sensor"}.
+/// "returns", "folded_returns", "saturated_returns", "box_world", "box_sensor"}.
 nlohmann::json ground_truth_object_json(const GroundTruthObject& object);
 
 /// Atomic (see AtomicFile).
