@@ -652,64 +652,65 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
     // The returns as they stand: each surface's energy and range spread, and so the energy at
     // which its pulse reaches the threshold.
     thread_local std::vector<std::uint32_t> surface_of_echo;
-    std::vector<BeamSurface> surfaces = gather_surfaces(echoes, gap, &surface_of_echo);
-    {
-        // What the receiver tells apart: surfaces whose echoes overlap in range, or come closer than
-        // the pulse's length, make one pulse in the waveform. A cell shared by two of them changes
-        // nothing the receiver reports, so they are judged as one return.
-        const double resolution = 0.5 * kSpeedOfLight_mps * scenario_.sensor.transmitter.pulse_width_ns * 1e-9;
-        thread_local std::vector<std::pair<double, double>> extent;
-        thread_local std::vector<std::uint32_t> order, merged;
-        extent.resize(surfaces.size());
-        order.resize(surfaces.size());
-        for (std::size_t g = 0; g < surfaces.size(); ++g) {
-            double lo = surfaces[g].echoes.front().range_m, hi = lo;
-            for (const Echo& e : surfaces[g].echoes) {
-                lo = std::min(lo, e.range_m - e.spread_m);
-                hi = std::max(hi, e.range_m + e.spread_m);
-            }
-            extent[g] = {lo, hi};
-            order[g] = static_cast<std::uint32_t>(g);
+    thread_local std::vector<BeamSurface> surfaces;
+    gather_surfaces(echoes, gap, surfaces, &surface_of_echo);
+    // What the receiver tells apart: surfaces whose echoes overlap in range, or come closer than
+    // the pulse's length, make one pulse in the waveform. A cell shared by two of them changes
+    // nothing the receiver reports, so they are judged as one return (a cluster).
+    const double resolution = 0.5 * kSpeedOfLight_mps * scenario_.sensor.transmitter.pulse_width_ns * 1e-9;
+    thread_local std::vector<std::pair<double, double>> extent;
+    thread_local std::vector<std::uint32_t> order, merged;
+    extent.resize(surfaces.size());
+    order.resize(surfaces.size());
+    for (std::size_t g = 0; g < surfaces.size(); ++g) {
+        double lo = surfaces[g].echoes.front().range_m, hi = lo;
+        for (const Echo& e : surfaces[g].echoes) {
+            lo = std::min(lo, e.range_m - e.spread_m);
+            hi = std::max(hi, e.range_m + e.spread_m);
         }
-        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return extent[a].first < extent[b].first; });
-        merged.assign(surfaces.size(), 0);
-        std::vector<BeamSurface> clusters;
-        double reach = -1e300;
-        for (const std::uint32_t g : order) {
-            if (clusters.empty() || extent[g].first - reach > resolution) {
-                clusters.emplace_back();
-                reach = extent[g].second;
-            }
-            reach = std::max(reach, extent[g].second);
-            merged[g] = static_cast<std::uint32_t>(clusters.size() - 1);
-            auto& target = clusters.back().echoes;
-            target.insert(target.end(), surfaces[g].echoes.begin(), surfaces[g].echoes.end());
-        }
-        for (std::uint32_t& g : surface_of_echo) g = merged[g];
-        surfaces = std::move(clusters);
+        extent[g] = {lo, hi};
+        order[g] = static_cast<std::uint32_t>(g);
     }
-    const std::size_t returns = surfaces.size() + volumes.size();
-    thread_local std::vector<double> energy, variance, threshold;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return extent[a].first < extent[b].first; });
+    merged.assign(surfaces.size(), 0);
+    std::size_t clusters = 0;
+    double reach = -1e300;
+    for (const std::uint32_t g : order) {
+        if (clusters == 0 || extent[g].first - reach > resolution) {
+            ++clusters;
+            reach = extent[g].second;
+        }
+        reach = std::max(reach, extent[g].second);
+        merged[g] = static_cast<std::uint32_t>(clusters - 1);
+    }
+    for (std::uint32_t& g : surface_of_echo) g = merged[g];
+    const std::size_t returns = clusters + volumes.size();
+    thread_local std::vector<double> energy, variance, threshold, mean;
     energy.assign(returns, 0.0);
     variance.assign(returns, 0.0);
     threshold.assign(returns, 0.0);
-    auto moments = [&](const std::vector<Echo>& list, std::size_t g) {
-        double e = 0.0, mean = 0.0;
-        for (const Echo& x : list) {
-            e += x.energy_j;
-            mean += x.energy_j * x.range_m;
-        }
-        double spread = 0.0;
-        if (e > 0.0) {
-            mean /= e;
-            for (const Echo& x : list) spread += x.energy_j * ((x.range_m - mean) * (x.range_m - mean) + x.spread_m * x.spread_m);
-            spread = std::sqrt(spread / e);
-        }
-        energy[g] = e;
-        threshold[g] = threshold_energy_j(spread);
+    mean.assign(returns, 0.0);
+    // Each return's energy and range spread (so the energy at which its pulse reaches the
+    // threshold), its echoes taken in range order of their surfaces.
+    auto each_echo = [&](auto&& f) {
+        for (const std::uint32_t g : order)
+            for (const Echo& x : surfaces[g].echoes) f(merged[g], x);
+        for (std::size_t g = 0; g < volumes.size(); ++g)
+            for (const Echo& x : volumes[g].echoes) f(clusters + g, x);
     };
-    for (std::size_t g = 0; g < surfaces.size(); ++g) moments(surfaces[g].echoes, g);
-    for (std::size_t g = 0; g < volumes.size(); ++g) moments(volumes[g].echoes, surfaces.size() + g);
+    each_echo([&](std::size_t g, const Echo& x) {
+        energy[g] += x.energy_j;
+        mean[g] += x.energy_j * x.range_m;
+    });
+    thread_local std::vector<double> spread;
+    spread.assign(returns, 0.0);
+    for (std::size_t g = 0; g < returns; ++g)
+        if (energy[g] > 0.0) mean[g] /= energy[g];
+    each_echo([&](std::size_t g, const Echo& x) {
+        if (energy[g] > 0.0) spread[g] += x.energy_j * ((x.range_m - mean[g]) * (x.range_m - mean[g]) + x.spread_m * x.spread_m);
+    });
+    for (std::size_t g = 0; g < returns; ++g)
+        threshold[g] = threshold_energy_j(energy[g] > 0.0 ? std::sqrt(spread[g] / energy[g]) : 0.0);
     // Which return each leaf's surface echo went to.
     for (Region* r : regions)
         for (Region::Node& n : r->nodes) {
@@ -726,7 +727,7 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
     }
     auto volume_return = [&](std::uint32_t object_id) -> std::int32_t {
         for (std::size_t g = 0; g < volumes.size(); ++g)
-            if (volumes[g].object_id == object_id) return static_cast<std::int32_t>(surfaces.size() + g);
+            if (volumes[g].object_id == object_id) return static_cast<std::int32_t>(clusters + g);
         return -1;
     };
 
@@ -876,7 +877,7 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
     for (Region* r : regions)
         for (const Region::Node& n : r->nodes)
             if (n.leaf() && n.surface >= 0) ++samples_of[static_cast<std::size_t>(n.surface)];
-    for (std::size_t g = 0; g < surfaces.size(); ++g) {
+    for (std::size_t g = 0; g < clusters; ++g) {
         if (samples_of[g] == 0) continue;
         const double margin = 1.5 / std::sqrt(2.0 * samples_of[g]);
         undecided[g] = std::abs(energy[g] - threshold[g]) < margin * threshold[g];
