@@ -29,7 +29,13 @@ constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's ce
 /// of the beam is resolved), and a region traces at most so many sub-rays.
 constexpr int kMaxSplits = 8;
 constexpr std::size_t kFootprintSamples = 256;  ///< a whole footprint's (a recorded map's grazing one)
-constexpr std::size_t kOutlineSamples = 1024;   ///< a target's outline
+/// A target's outline takes at most 1 / tolerance^2 of these (as a sampled estimate's error falls
+/// with its samples), between 256 (tolerance 0.05 and above) and 1024 (0.025 and below). A small
+/// target of many surfaces within one return (a quadcopter's arms, rotors and body) keeps the
+/// estimate's variance above a coarse tolerance through its inner edges: with one cap for every
+/// tolerance, each beam near a drone ran to 1024 whatever the tolerance asked.
+constexpr double kOutlineSamplesPerInverseTolerance2 = 0.64;
+constexpr std::size_t kOutlineSamplesMin = 256, kOutlineSamplesMax = 1024;
 constexpr int kFootprintBase = 2;
 constexpr int kOutlineBase = 4;
 /// Random-draw numbers of the cells: every (splits along x, splits along y, i, j) its own.
@@ -270,6 +276,8 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
       receiver_(receiver),
       adaptive_(scenario.render.footprint_samples == 0),
       tolerance_(scenario.render.footprint_tolerance),
+      outline_samples_(std::clamp(static_cast<std::size_t>(kOutlineSamplesPerInverseTolerance2 / (tolerance_ * tolerance_)),
+                                  kOutlineSamplesMin, kOutlineSamplesMax)),
       ellipticity_(scenario.sensor.transmitter.divergence_el_mrad / scenario.sensor.transmitter.divergence_mrad),
       small_object_rad_(0.0),
       aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
@@ -417,7 +425,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         target_region.reset(footprint_, *targets, std::nullopt, 0.0, 0);
         target_region.outline = true;
         target_region.base = kOutlineBase;
-        target_region.max_samples = kOutlineSamples;
+        target_region.max_samples = outline_samples_;
         Region* const first[] = {&target_region};
         refine(aim, first, witnesses, media, frame, out);
         double sampled = 0.0;

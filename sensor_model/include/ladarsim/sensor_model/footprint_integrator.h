@@ -148,6 +148,7 @@ private:
     const BeamReceiver& receiver_;
     bool adaptive_;
     double tolerance_;
+    std::size_t outline_samples_;  ///< a target outline's sub-ray budget at this tolerance
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
