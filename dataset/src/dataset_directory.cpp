@@ -93,7 +93,8 @@ std::filesystem::path checked_output_dir(const std::filesystem::path& requested,
                              "e.g. --out " + (out / layout.what).string());
     if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / layout.marker, ec))
         throw InputError(out.string(), "--out",
-                         "is a non-empty directory without a ladarsim " + layout.marker + "; refusing to replace it");
+                         "is a non-empty directory without the " + layout.marker + " ladarsim writes in every " + layout.what +
+                             "; refusing to replace it");
     if (const auto foreign = foreign_entries(out, layout); !foreign.empty()) {
         std::vector<std::string> dirs;
         for (const auto& f : foreign) dirs.push_back(f.substr(0, f.find('/') + 1));
