@@ -32,7 +32,7 @@ JSON
 "$bin" export-kitti "$work/d" --out "$work/k" >"$work/stdout" 2>"$work/stderr" || fail "export failed: $(cat "$work/stderr")"
 grep -q "^exported 2 frames" "$work/stdout" || fail "no summary line: $(cat "$work/stdout")"
 grep -q "^export, frame 2/2" "$work/stderr" || fail "no progress lines: $(cat "$work/stderr")"
-python3 "$src/tests/cli/check_kitti_export.py" "$work/d" "$work/k" || fail "the export does not read back as the dataset"
+/usr/bin/python3 "$src/tests/cli/check_kitti_export.py" "$work/d" "$work/k" || fail "the export does not read back as the dataset"
 [ ! -e "$work/k.partial" ] && [ ! -e "$work/k.old" ] || fail "staging directories left behind"
 
 # Exported again onto itself: the user's notes beside it are kept; a file of the user's inside
@@ -41,7 +41,7 @@ echo "my notes" >"$work/k/NOTES.txt"
 "$bin" export-kitti "$work/d" --out "$work/k" >"$work/stdout" 2>"$work/stderr" || fail "re-export failed: $(cat "$work/stderr")"
 [ "$(cat "$work/k/NOTES.txt" 2>/dev/null)" = "my notes" ] || fail "NOTES.txt was lost in a re-export"
 grep -q "NOTES.txt" "$work/stdout" || fail "the summary does not say NOTES.txt was kept: $(cat "$work/stdout")"
-python3 "$src/tests/cli/check_kitti_export.py" "$work/d" "$work/k" >/dev/null || fail "the re-export does not read back"
+/usr/bin/python3 "$src/tests/cli/check_kitti_export.py" "$work/d" "$work/k" >/dev/null || fail "the re-export does not read back"
 
 # Exit 2 and one line on stderr (besides progress lines) naming `word`.
 expect_refusal() {

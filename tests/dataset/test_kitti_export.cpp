@@ -81,32 +81,29 @@ TEST_CASE("a box turned about the vertical only has the devkit build the same ei
 }
 
 TEST_CASE("a tilted box becomes the tightest box about the vertical that holds it", "[kitti_export]") {
-    OrientedBox box;
-    box.size = {4.0, 2.0, 1.0};
-    SECTION("rolled a quarter: width and height trade places") {
-        box.orientation = aircraft(30, 0, 90);
+    const double c = std::cos(20 * kPi / 180), s = std::sin(20 * kPi / 180);
+    struct Case {
+        const char* what;
+        Eigen::Quaterniond orientation;
+        double length_m, width_m, height_m, rotation_y_rad;
+    };
+    // A 4 x 2 x 1 m box (l, w, h in its own frame).
+    const Case cases[] = {
+        {"rolled a quarter: width and height trade places", aircraft(30, 0, 90), 4, 1, 2, -30 * kPi / 180 - kPi / 2},
+        {"nose straight up: the heading comes from the left axis", aircraft(30, 90, 0), 1, 2, 4, -30 * kPi / 180 - kPi / 2},
+        {"pitched: l cos + h sin along the heading, h cos + l sin upright", aircraft(-50, 20, 0), 4 * c + 1 * s, 2,
+         1 * c + 4 * s, 50 * kPi / 180 - kPi / 2},
+    };
+    for (const Case& test : cases) {
+        INFO(test.what);
+        OrientedBox box;
+        box.size = {4.0, 2.0, 1.0};
+        box.orientation = test.orientation;
         const KittiBox k = kitti_box(box);
-        CHECK(k.length_m == Approx(4.0));
-        CHECK(k.width_m == Approx(1.0));
-        CHECK(k.height_m == Approx(2.0));
-        CHECK(k.rotation_y_rad == Approx(-30 * kPi / 180 - kPi / 2));
-    }
-    SECTION("nose straight up: the heading comes from the left axis") {
-        box.orientation = aircraft(30, 90, 0);
-        const KittiBox k = kitti_box(box);
-        CHECK(k.length_m == Approx(1.0));
-        CHECK(k.width_m == Approx(2.0));
-        CHECK(k.height_m == Approx(4.0));
-        CHECK(k.rotation_y_rad == Approx(-30 * kPi / 180 - kPi / 2));
-    }
-    SECTION("pitched: l cos + h sin along the heading, h cos + l sin upright") {
-        box.orientation = aircraft(-50, 20, 0);
-        const KittiBox k = kitti_box(box);
-        const double c = std::cos(20 * kPi / 180), s = std::sin(20 * kPi / 180);
-        CHECK(k.length_m == Approx(4.0 * c + 1.0 * s));
-        CHECK(k.width_m == Approx(2.0));
-        CHECK(k.height_m == Approx(1.0 * c + 4.0 * s));
-        CHECK(k.rotation_y_rad == Approx(50 * kPi / 180 - kPi / 2));
+        CHECK(k.length_m == Approx(test.length_m));
+        CHECK(k.width_m == Approx(test.width_m));
+        CHECK(k.height_m == Approx(test.height_m));
+        CHECK(k.rotation_y_rad == Approx(test.rotation_y_rad));
     }
 }
 
