@@ -56,16 +56,6 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
     file.commit();
 }
 
-/// Ground truth by frame index: empty for a recorded dataset (no ground_truth.json).
-std::map<std::uint64_t, std::vector<GroundTruthObject>> ground_truth_by_index(const std::filesystem::path& dataset_dir) {
-    std::map<std::uint64_t, std::vector<GroundTruthObject>> by_index;
-    const auto file = dataset_dir / "ground_truth.json";
-    std::error_code ec;
-    if (!std::filesystem::exists(file, ec)) return by_index;
-    for (auto& f : read_ground_truth_json(file)) by_index[f.index] = std::move(f.objects);
-    return by_index;
-}
-
 /// The frame index a frame file's name holds (NNNNNN.pcd), as ground truth names frames.
 std::uint64_t frame_index_of(const std::filesystem::path& pcd, const std::filesystem::path& truth_file) {
     const std::string stem = pcd.stem().string();
@@ -73,6 +63,26 @@ std::uint64_t frame_index_of(const std::filesystem::path& pcd, const std::filesy
         throw InputError(pcd.string(), "(name)",
                          "is not named NNNNNN.pcd, so its frame in " + truth_file.string() + " cannot be found");
     return std::stoull(stem);
+}
+
+/// Each frame file's ground truth; none for a recorded dataset (no ground_truth.json). Throws
+/// InputError, before anything is written, for a frame ground truth lacks.
+std::vector<std::optional<FrameGroundTruth>> ground_truth_of_frames(const std::filesystem::path& dataset_dir,
+                                                                    const std::vector<std::filesystem::path>& pcds) {
+    std::vector<std::optional<FrameGroundTruth>> of_frames(pcds.size());
+    const auto file = dataset_dir / "ground_truth.json";
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) return of_frames;
+    std::map<std::uint64_t, FrameGroundTruth> by_index;
+    for (auto& f : read_ground_truth_json(file)) by_index[f.index] = std::move(f);
+    for (std::size_t i = 0; i < pcds.size(); ++i) {
+        const std::uint64_t index = frame_index_of(pcds[i], file);
+        const auto it = by_index.find(index);
+        if (it == by_index.end())
+            throw InputError(file.string(), "frames", "has no frame " + std::to_string(index) + " for " + pcds[i].string());
+        of_frames[i] = std::move(it->second);
+    }
+    return of_frames;
 }
 
 /// The label_2 lines of a frame: its objects of a labelled class with returns in it.
@@ -197,7 +207,7 @@ KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const 
     const std::filesystem::path source = std::filesystem::absolute(dataset_dir).lexically_normal();
     const Manifest manifest = read_manifest(source / "manifest.json");
     const auto pcds = frame_pcd_files(source);
-    const auto truth = ground_truth_by_index(source);
+    const auto truth = ground_truth_of_frames(source, pcds);
 
     KittiExportSummary summary;
     summary.out = checked_output_dir(out_dir, kitti_layout());
@@ -214,14 +224,9 @@ KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const 
         write_text(staging / "training" / "velodyne" / (stem + ".bin"), velodyne_bytes(returns, summary.intensity_scale));
         nlohmann::json entry = {{"kitti", stem}, {"pcd", "frames/" + pcds[i].filename().string()}, {"returns", returns.size()}};
         std::vector<std::string> lines;
-        if (!truth.empty()) {
-            const std::uint64_t index = frame_index_of(pcds[i], source / "ground_truth.json");
-            const auto frame_truth = truth.find(index);
-            if (frame_truth == truth.end())
-                throw InputError((source / "ground_truth.json").string(), "frames", "has no frame " + std::to_string(index) +
-                                                                                        " for " + pcds[i].string());
-            lines = label_lines(frame_truth->second, returns);
-            entry["frame_index"] = index;
+        if (truth[i]) {
+            lines = label_lines(truth[i]->objects, returns);
+            entry["frame_index"] = truth[i]->index;
         }
         std::string labels;
         for (const auto& line : lines) labels += line + "\n";

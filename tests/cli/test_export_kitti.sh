@@ -76,4 +76,14 @@ cp -r "$work/d" "$work/broken" && printf 'not a pcd\n' >"$work/broken/frames/000
 expect_refusal "a malformed frame" "broken/frames/000001.pcd" $?
 [ ! -e "$work/k2" ] || fail "a malformed frame left an export"
 
+cp -r "$work/d" "$work/short" && /usr/bin/python3 - "$work/short/ground_truth.json" <<'PY'
+import json, sys
+truth = json.load(open(sys.argv[1]))
+truth["frames"] = truth["frames"][:1]
+json.dump(truth, open(sys.argv[1], "w"))
+PY
+"$bin" export-kitti "$work/short" --out "$work/k2" >/dev/null 2>"$work/stderr"
+expect_refusal "ground truth without a frame" "ground_truth.json: frames: has no frame 1" $?
+[ ! -e "$work/k2" ] && [ ! -e "$work/k2.partial" ] || fail "ground truth without a frame left an export"
+
 if [ "$failures" -eq 0 ]; then echo "export-kitti: all checks passed"; else echo "export-kitti: $failures failed"; exit 1; fi
