@@ -108,8 +108,6 @@ float largest_intensity(const std::vector<std::filesystem::path>& pcds, const Ki
 
 nlohmann::json export_record(const std::filesystem::path& dataset_dir, const Manifest& manifest, float intensity_scale,
                              nlohmann::json frames) {
-    nlohmann::json not_labelled = nlohmann::json::array();
-    for (const char* c : {"building", "terrain", "tree", "cloud", "background"}) not_labelled.push_back(c);
     return {{"software", software_json()},
             {"exported_from", dataset_dir.string()},
             {"dataset_id", manifest.id},
@@ -123,7 +121,7 @@ nlohmann::json export_record(const std::filesystem::path& dataset_dir, const Man
                        "about the vertical only that encloses ground truth's box_sensor; truncated 0, occluded 3 "
                        "(unknown), bbox -1 -1 -1 -1 (no image)"},
             {"class_map", type_of_class()},
-            {"not_labelled", not_labelled},
+            {"not_labelled", "every other class (the scene: building, terrain, tree, cloud, background)"},
             {"frames", std::move(frames)}};
 }
 
