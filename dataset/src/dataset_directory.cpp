@@ -29,6 +29,27 @@ std::string joined(const std::vector<std::string>& names) {
     return s;
 }
 
+/// The user's entries inside ladarsim's own directories of `out`, as relative paths, sorted; a
+/// directory of the user's is named, not entered.
+std::vector<std::string> foreign_entries(const std::filesystem::path& out, const OutputLayout& layout) {
+    std::vector<std::string> foreign;
+    std::error_code ec;
+    std::vector<std::string> own_dirs;
+    for (const auto& e : std::filesystem::directory_iterator(out))
+        if (e.is_directory(ec) && layout.is_own_entry(e.path().filename().string())) own_dirs.push_back(e.path().filename().string());
+    while (!own_dirs.empty()) {
+        const std::string dir = own_dirs.back();
+        own_dirs.pop_back();
+        for (const auto& e : std::filesystem::directory_iterator(out / dir)) {
+            const std::string relative = dir + "/" + e.path().filename().string();
+            if (!layout.is_own_inside(relative)) foreign.push_back(dir + "/" + entry_name(e));
+            else if (e.is_directory(ec)) own_dirs.push_back(relative);
+        }
+    }
+    std::sort(foreign.begin(), foreign.end());
+    return foreign;
+}
+
 }  // namespace
 
 bool is_dataset_entry(const std::string& name) {
@@ -43,7 +64,15 @@ bool is_mount_point(const std::filesystem::path& dir) {
     return self.st_dev != parent.st_dev;
 }
 
-std::filesystem::path checked_dataset_dir(const std::filesystem::path& requested) {
+const OutputLayout& dataset_layout() {
+    static const OutputLayout layout{"dataset", "manifest.json", is_dataset_entry, [](const std::string& relative) {
+                                         const auto path = std::filesystem::path(relative);
+                                         return path.parent_path() == "frames" && is_frame_file(path.filename().string());
+                                     }};
+    return layout;
+}
+
+std::filesystem::path checked_output_dir(const std::filesystem::path& requested, const OutputLayout& layout) {
     std::filesystem::path out = std::filesystem::absolute(requested).lexically_normal();
     if (!out.has_filename()) out = out.parent_path();
     std::error_code ec;
@@ -51,7 +80,7 @@ std::filesystem::path checked_dataset_dir(const std::filesystem::path& requested
         if (!std::filesystem::exists(out, ec))
             throw InputError(out.string(), "--out", "is a symbolic link to nothing (" +
                                                         std::filesystem::read_symlink(out, ec).string() + ")");
-        // The link stays; the dataset goes where it points.
+        // The link stays; the output goes where it points.
         out = std::filesystem::canonical(out, ec);
     }
     if (out == out.root_path()) throw InputError(out.string(), "--out", "is the root directory; give a directory inside it");
@@ -59,28 +88,32 @@ std::filesystem::path checked_dataset_dir(const std::filesystem::path& requested
     if (!std::filesystem::is_directory(out, ec)) throw InputError(out.string(), "--out", "exists and is not a directory");
     if (is_mount_point(out))
         throw InputError(out.string(), "--out",
-                         "is a mount point: the dataset is staged beside it in " + out.filename().string() +
+                         "is a mount point: the " + layout.what + " is staged beside it in " + out.filename().string() +
                              ".partial, on another file system, and could not be moved in; give a directory inside it, "
-                             "e.g. --out " + (out / "dataset").string());
-    if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / "manifest.json", ec))
+                             "e.g. --out " + (out / layout.what).string());
+    if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / layout.marker, ec))
         throw InputError(out.string(), "--out",
-                         "is a non-empty directory without a ladarsim manifest.json; refusing to replace it");
-    if (std::filesystem::is_directory(out / "frames", ec)) {
-        std::vector<std::string> foreign;
-        for (const auto& e : std::filesystem::directory_iterator(out / "frames"))
-            if (!is_frame_file(e.path().filename().string())) foreign.push_back("frames/" + entry_name(e));
-        std::sort(foreign.begin(), foreign.end());
-        if (!foreign.empty())
-            throw InputError(out.string(), "--out",
-                             "holds files ladarsim did not write inside frames/, which a new dataset replaces: " +
-                                 joined(foreign) + "; move them out first");
+                         "is a non-empty directory without the " + layout.marker + " ladarsim writes in every " + layout.what +
+                             "; refusing to replace it");
+    if (const auto foreign = foreign_entries(out, layout); !foreign.empty()) {
+        std::vector<std::string> dirs;
+        for (const auto& f : foreign) dirs.push_back(f.substr(0, f.find('/') + 1));
+        dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
+        throw InputError(out.string(), "--out",
+                         "holds files ladarsim did not write inside " + joined(dirs) + ", which a new " + layout.what +
+                             " replaces: " + joined(foreign) + "; move them out first");
     }
     return out;
 }
 
+std::filesystem::path checked_dataset_dir(const std::filesystem::path& requested) {
+    return checked_output_dir(requested, dataset_layout());
+}
+
 std::filesystem::path staging_dir(const std::filesystem::path& out) { return out.string() + ".partial"; }
 
-std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, const std::filesystem::path& out) {
+std::vector<std::string> swap_in_output(const std::filesystem::path& staging, const std::filesystem::path& out,
+                                        const OutputLayout& layout) {
     const std::filesystem::path old = out.string() + ".old";
     std::filesystem::remove_all(old);
     if (!std::filesystem::exists(out)) {
@@ -92,7 +125,7 @@ std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, c
     std::vector<std::string> kept;
     std::filesystem::create_directory(old);
     for (const auto& e : std::filesystem::directory_iterator(out)) {
-        if (is_dataset_entry(e.path().filename().string())) std::filesystem::rename(e.path(), old / e.path().filename());
+        if (layout.is_own_entry(e.path().filename().string())) std::filesystem::rename(e.path(), old / e.path().filename());
         else kept.push_back(entry_name(e));
     }
     for (const auto& e : std::filesystem::directory_iterator(staging)) std::filesystem::rename(e.path(), out / e.path().filename());
@@ -100,6 +133,10 @@ std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, c
     std::filesystem::remove_all(old);
     std::sort(kept.begin(), kept.end());
     return kept;
+}
+
+std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, const std::filesystem::path& out) {
+    return swap_in_output(staging, out, dataset_layout());
 }
 
 std::string kept_files_note(const std::vector<std::string>& kept, const std::filesystem::path& out) {

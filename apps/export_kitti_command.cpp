@@ -1,0 +1,50 @@
+// `ladarsim export-kitti`: a dataset in the KITTI object-detection layout, for detectors that read KITTI.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "command.h"
+#include "ladarsim/dataset/kitti_export.h"
+#include "progress.h"
+
+namespace ladarsim::apps {
+namespace {
+
+struct ExportKittiCommand {
+    std::string dataset_dir, out_dir;
+
+    CLI::App* add(CLI::App& app) {
+        auto* export_cmd = app.add_subcommand(
+            "export-kitti",
+            "Write a dataset in the KITTI object-detection layout: training/velodyne/NNNNNN.bin (float32 x y z "
+            "intensity, the sensor frame, intensity / the dataset's largest), training/label_2 (drones, birds and "
+            "planes with returns, boxes from ground truth), training/calib (no camera: the standard axis "
+            "permutation), ladarsim_export.json (source, frame numbers, class map); see docs/kitti.md");
+        export_cmd->add_option("dir", dataset_dir, "Dataset directory (frames/*.pcd, manifest.json, ground_truth.json if any)")
+            ->required();
+        export_cmd->add_option("--out", out_dir,
+                               "Export directory: absent, empty or an earlier export (files of yours in it are kept)")
+            ->required();
+        return export_cmd;
+    }
+
+    int run() {
+        KittiExportProgress progress;
+        progress.intensity_scanned = progress_lines("intensity scan, frame");
+        progress.frame_written = progress_lines("export, frame");
+        const KittiExportSummary s = export_kitti(dataset_dir, out_dir, progress);
+        std::printf("exported %d frames, %llu returns, %llu labels from %s into %s (KITTI layout, intensity / %g)\n",
+                    s.frames, static_cast<unsigned long long>(s.returns), static_cast<unsigned long long>(s.labels),
+                    dataset_dir.c_str(), s.out.c_str(), static_cast<double>(s.intensity_scale));
+        if (!s.kept.empty()) std::printf("%s\n", kept_files_note(s.kept, s.out).c_str());
+        return 0;
+    }
+};
+
+}  // namespace
+
+void add_export_kitti_command(CLI::App& app, int& exit_code) {
+    add_command(app, std::make_shared<ExportKittiCommand>(), exit_code);
+}
+
+}  // namespace ladarsim::apps
