@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
@@ -22,6 +23,7 @@ struct DetectCommand {
     std::string dataset_dir, detections_file, method_name = "vrbnn";
     detect::DetectorConfig detector;
     std::uint32_t target_id = 0;
+    std::vector<double> target_size{0.3, 0.3, 0.06};
 
     CLI::App* add(CLI::App& app) {
         auto* detect_cmd = app.add_subcommand("detect", "Run Algorithm 1 (background subtraction, (V-)RBNN, FIR or Kalman) over a dataset");
@@ -46,6 +48,12 @@ struct DetectCommand {
         detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)")
             ->check(positive_number(true))
             ->capture_default_str();
+        detect_cmd->add_option("--target-size", target_size,
+                               "The sensor-aware box's size where the returns cannot resolve it, m, along the sensor's x y z "
+                               "(a small quadcopter's; eval scores this box beside the one around the points)")
+            ->expected(3)
+            ->check(positive_number())
+            ->capture_default_str();
         detect_cmd->add_option("--target", target_id, "Ground-truth id of the target to score (default: the first drone)")
             ->check(whole_number(1, std::numeric_limits<std::uint32_t>::max()));
         return detect_cmd;
@@ -53,6 +61,7 @@ struct DetectCommand {
 
     int run() {
         detector.method = detect::method_from_string(method_name);
+        detector.target_size_m = {target_size[0], target_size[1], target_size[2]};
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
         // recorded one has none.

@@ -22,7 +22,9 @@ struct EvalCommand {
         auto* eval_cmd = app.add_subcommand("eval", "Score detections against the ground truth: L2, IoU, EAO");
         eval_cmd->add_option("dir", dataset_dir, "Dataset directory")->required();
         eval_cmd->add_option("--detections", detections_file, "Detections JSON written by `ladarsim detect`")->required();
-        eval_cmd->add_option("--json", eval_json, "Write the scores (mean_l2_m, mean_iou, eao, frames, failures, per frame)");
+        eval_cmd->add_option("--json", eval_json,
+                             "Write the scores (mean_l2_m; mean_iou, mean_iou_bev, eao, eao_bev of the sensor-aware box and, "
+                             "under point_box, of the box around the points; frames, failures, per frame)");
         eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
         return eval_cmd;
     }
@@ -31,11 +33,16 @@ struct EvalCommand {
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         const nlohmann::json scores = detect::evaluate_report(sequence, read_json(detections_file), detections_file);
         const auto& interval = scores["eao_interval"];
-        std::printf("%s: %d frames, mean L2 %.3f m, mean IoU %.3f, EAO %.3f over lengths %d-%d, %d failures, %d frames lost\n",
+        const auto& points = scores["point_box"];
+        std::printf("%s: %d frames, mean L2 %.3f m, %d failures, %d frames lost; EAO over lengths %d-%d\n"
+                    "  sensor-aware box: mean IoU %.3f (bird's-eye %.3f), EAO %.3f (bird's-eye %.3f)\n"
+                    "  box around the points: mean IoU %.3f (bird's-eye %.3f), EAO %.3f (bird's-eye %.3f)\n",
                     scores["method"].get<std::string>().c_str(), scores["frames"].get<int>(),
-                    scores["mean_l2_m"].is_null() ? NAN : scores["mean_l2_m"].get<double>(), scores["mean_iou"].get<double>(),
-                    scores["eao"].get<double>(), interval[0].get<int>(), interval[1].get<int>(), scores["failures"].get<int>(),
-                    scores["frames_lost"].get<int>());
+                    scores["mean_l2_m"].is_null() ? NAN : scores["mean_l2_m"].get<double>(), scores["failures"].get<int>(),
+                    scores["frames_lost"].get<int>(), interval[0].get<int>(), interval[1].get<int>(),
+                    scores["mean_iou"].get<double>(), scores["mean_iou_bev"].get<double>(), scores["eao"].get<double>(),
+                    scores["eao_bev"].get<double>(), points["mean_iou"].get<double>(), points["mean_iou_bev"].get<double>(),
+                    points["eao"].get<double>(), points["eao_bev"].get<double>());
         const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
         if (!json_path.empty()) write_json(json_path, scores);
         if (!eval_plot.empty()) {

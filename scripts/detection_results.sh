@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders the paper's four datasets (if not rendered yet), runs every detector configuration on
-# them and prints mean L2, mean IoU and EAO as a markdown table (docs/detection_results_table.md).
+# them and prints mean L2, IoU and EAO (in 3-D and bird's-eye view, of the sensor-aware box and of
+# the box around the points) as a markdown table (docs/detection.md).
 # Usage: scripts/detection_results.sh [OUT_ROOT] [SCENARIO ...]   (default out/; the four
 # datasets, and their Autzen variants where ../shared/data/autzen is present)
 set -euo pipefail
@@ -20,8 +21,8 @@ configs=(
   "vrbnn|--method vrbnn --lambda 180"
   "kalman|--method kalman --lambda 180"
 )
-echo "| dataset | detector | mean L2 (m) | mean IoU | EAO | failures | frames lost |"
-echo "|---|---|---|---|---|---|---|"
+echo "| dataset | detector | mean L2 (m) | mean IoU | IoU, bird's-eye | EAO | EAO, bird's-eye | points' box: IoU / bird's-eye / EAO bird's-eye | failures | frames lost |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for n in "${names[@]}"; do
   dir=$root/$n
   [ -f "$dir/manifest.json" ] || $bin render "assets/scenarios/$n.json" --out "$dir" --quiet >/dev/null
@@ -34,6 +35,9 @@ for n in "${names[@]}"; do
 import json, sys
 e = json.load(open('$dir/eval-$name.json'))
 l2 = '-' if e['mean_l2_m'] is None else '%.3f' % e['mean_l2_m']
-print('| ${n#dataset} | $name | %s | %.3f | %.3f | %d | %d |' % (l2, e['mean_iou'], e['eao'], e['failures'], e['frames_lost']))"
+p = e['point_box']
+print('| ${n#dataset} | $name | %s | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f / %.3f | %d | %d |' % (
+    l2, e['mean_iou'], e['mean_iou_bev'], e['eao'], e['eao_bev'], p['mean_iou'], p['mean_iou_bev'], p['eao_bev'],
+    e['failures'], e['frames_lost']))"
   done
 done

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <string>
 
 #include "ladarsim/dataset/frame_io.h"
@@ -96,7 +97,33 @@ std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& 
     return out;
 }
 
-SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target) {
+double overlap(const Detection& d, ScoredBox box, Overlap kind, const OrientedBox& truth) {
+    if (!d.found) return 0.0;
+    const OrientedBox& scored = box == ScoredBox::points ? d.box : d.sensor_box;
+    return kind == Overlap::volume ? axis_aligned_iou(scored, truth) : bev_iou(scored, truth);
+}
+
+namespace {
+
+/// The names supervised_runs and a detection report give the scored boxes and overlaps.
+const std::vector<std::tuple<std::string, ScoredBox, Overlap>>& scored_kinds() {
+    static const std::vector<std::tuple<std::string, ScoredBox, Overlap>> kinds = {
+        {"points_3d", ScoredBox::points, Overlap::volume},
+        {"points_bev", ScoredBox::points, Overlap::bev},
+        {"sensor_3d", ScoredBox::sensor_aware, Overlap::volume},
+        {"sensor_bev", ScoredBox::sensor_aware, Overlap::bev}};
+    return kinds;
+}
+
+}  // namespace
+
+SupervisedRuns supervised_runs(const Sequence& s, const DetectorConfig& config, std::uint32_t target) {
+    SupervisedRuns runs;
+    for (const auto& [name, box, kind] : scored_kinds()) runs[name] = supervised_run(s, config, target, box, kind);
+    return runs;
+}
+
+SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target, ScoredBox box, Overlap kind) {
     constexpr std::size_t kSkipAfterFailure = 5;  // VOT: re-initialise five frames after a failure
     SupervisedRun run;
     TargetTracker tracker(config, s.sensor, s.background);
@@ -123,7 +150,7 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
         }
         const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]);
         confirmed = confirmed || (d.found && !d.predicted);
-        const double iou = d.found && confirmed ? axis_aligned_iou(d.box, *truth) : 0.0;
+        const double iou = confirmed ? overlap(d, box, kind, *truth) : 0.0;
         run.iou.push_back(iou);
         run.initialised.push_back(false);
         if (iou <= 0.0) {
@@ -134,29 +161,35 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
     return run;
 }
 
-nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRun& supervised,
+nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRuns& supervised,
                         std::uint32_t target, std::pair<int, int> interval) {
     nlohmann::json per_frame = nlohmann::json::array();
-    double l2_sum = 0.0, iou_sum = 0.0;
+    double l2_sum = 0.0;
     int l2_count = 0, lost = 0;
+    std::map<std::string, double> iou_sum;
     std::vector<double> ious, l2s;
+    const SupervisedRun& headline = supervised.at("sensor_3d");
     for (std::size_t i = 0; i < detections.size(); ++i) {
         const auto truth = truth_box(s, i, target);
         if (!truth) throw InputError("ground_truth.json", "frames[" + std::to_string(i) + "]", "no box for the target");
         const Detection& d = detections[i];
-        const double iou = d.found ? axis_aligned_iou(d.box, *truth) : 0.0;
+        std::map<std::string, double> iou;
+        for (const auto& [name, box, kind] : scored_kinds()) {
+            iou[name] = overlap(d, box, kind, *truth);
+            iou_sum[name] += iou[name];
+        }
         const double l2 = d.found ? centre_distance_m(d.box, *truth) : std::numeric_limits<double>::infinity();
-        iou_sum += iou;
-        ious.push_back(iou);
+        ious.push_back(iou["sensor_3d"]);
         l2s.push_back(l2);
         if (d.found) {
             l2_sum += l2;
             ++l2_count;
         }
-        if (iou <= 0.0) ++lost;
-        per_frame.push_back({{"frame", d.frame}, {"found", d.found}, {"predicted", d.predicted}, {"iou", iou},
+        if (iou["sensor_3d"] <= 0.0) ++lost;
+        per_frame.push_back({{"frame", d.frame}, {"found", d.found}, {"predicted", d.predicted}, {"iou", iou["sensor_3d"]},
+                             {"iou_bev", iou["sensor_bev"]}, {"points_iou", iou["points_3d"]}, {"points_iou_bev", iou["points_bev"]},
                              {"l2_m", d.found ? nlohmann::json(l2) : nlohmann::json(nullptr)},
-                             {"supervised_iou", supervised.iou[i]}, {"initialised", static_cast<bool>(supervised.initialised[i])}});
+                             {"supervised_iou", headline.iou[i]}, {"initialised", static_cast<bool>(headline.initialised[i])}});
     }
     const auto n = static_cast<double>(detections.size());
     // One-pass success (fraction of frames with IoU >= t, 21 thresholds) and precision (L2 <= d).
@@ -170,15 +203,26 @@ nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detecti
     }
     for (double d : {0.2, 0.5, 1.0, 2.0})
         precision[std::to_string(d).substr(0, 3) + "_m"] = std::count_if(l2s.begin(), l2s.end(), [&](double v) { return v <= d; }) / n;
-    const auto fragments = fragments_of(supervised.iou, supervised.initialised);
+    auto eao = [&](const std::string& name) {
+        const SupervisedRun& run = supervised.at(name);
+        return expected_average_overlap(fragments_of(run.iou, run.initialised), interval.first, interval.second);
+    };
     return {{"target", target},
             {"frames", detections.size()},
             {"mean_l2_m", l2_count ? nlohmann::json(l2_sum / l2_count) : nlohmann::json(nullptr)},
-            {"mean_iou", iou_sum / n},
+            {"mean_iou", iou_sum["sensor_3d"] / n},
+            {"mean_iou_bev", iou_sum["sensor_bev"] / n},
             {"frames_lost", lost},
-            {"failures", supervised.failures},
-            {"eao", expected_average_overlap(fragments, interval.first, interval.second)},
+            {"failures", headline.failures},
+            {"eao", eao("sensor_3d")},
+            {"eao_bev", eao("sensor_bev")},
             {"eao_interval", {interval.first, interval.second}},
+            {"point_box",
+             {{"mean_iou", iou_sum["points_3d"] / n},
+              {"mean_iou_bev", iou_sum["points_bev"] / n},
+              {"eao", eao("points_3d")},
+              {"eao_bev", eao("points_bev")},
+              {"failures", supervised.at("points_3d").failures}}},
             {"success_auc", auc},
             {"success", success},
             {"precision", precision},
@@ -203,7 +247,10 @@ void check_same_dataset(const nlohmann::json& detections, const std::string& det
 nlohmann::json to_json(const Detection& d) {
     return {{"frame", d.frame}, {"time_s", d.time_s}, {"found", d.found}, {"predicted", d.predicted},
             {"centre_m", {d.box.centre.x(), d.box.centre.y(), d.box.centre.z()}},
-            {"size_m", {d.box.size.x(), d.box.size.y(), d.box.size.z()}}, {"points", d.points}, {"radius_m", d.radius_m}};
+            {"size_m", {d.box.size.x(), d.box.size.y(), d.box.size.z()}},
+            {"sensor_box", {{"centre_m", {d.sensor_box.centre.x(), d.sensor_box.centre.y(), d.sensor_box.centre.z()}},
+                            {"size_m", {d.sensor_box.size.x(), d.sensor_box.size.y(), d.sensor_box.size.z()}}}},
+            {"points", d.points}, {"radius_m", d.radius_m}};
 }
 
 Detection detection_from_json(const nlohmann::json& j) {
@@ -212,10 +259,11 @@ Detection detection_from_json(const nlohmann::json& j) {
     d.time_s = j.at("time_s").get<double>();
     d.found = j.at("found").get<bool>();
     d.predicted = j.at("predicted").get<bool>();
-    const auto& c = j.at("centre_m");
-    const auto& z = j.at("size_m");
-    d.box.centre = {c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()};
-    d.box.size = {z.at(0).get<double>(), z.at(1).get<double>(), z.at(2).get<double>()};
+    auto vector3 = [](const nlohmann::json& v) { return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()); };
+    d.box.centre = vector3(j.at("centre_m"));
+    d.box.size = vector3(j.at("size_m"));
+    d.sensor_box.centre = vector3(j.at("sensor_box").at("centre_m"));
+    d.sensor_box.size = vector3(j.at("sensor_box").at("size_m"));
     d.points = j.at("points").get<std::size_t>();
     d.radius_m = j.at("radius_m").get<double>();
     return d;
@@ -225,7 +273,8 @@ nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
     return {{"radius_m", c.rbnn_radius_m}, {"lambda", c.lambda.value_or(default_lambda(sensor))},
             {"bias_m", c.bias_m},          {"resolution_m", c.background_resolution_m},
             {"min_neighbours", c.min_neighbours}, {"max_diagonal_m", c.max_diagonal_m},
-            {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m}};
+            {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m},
+            {"target_size_m", {c.target_size_m.x(), c.target_size_m.y(), c.target_size_m.z()}}};
 }
 
 DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file) {
@@ -241,6 +290,11 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
     c.max_diagonal_m = f.number("max_diagonal_m", 0.0, kLarge, c.max_diagonal_m);
     c.max_speed_mps = f.number("max_speed_mps", 0.0, kLarge, c.max_speed_mps);
     c.min_box_m = f.number("min_box_m", 0.0, kLarge, c.min_box_m);
+    if (f.has("target_size_m")) {
+        c.target_size_m = f.vec3("target_size_m");
+        if (!(c.target_size_m.array() > 0.0).all() || !c.target_size_m.allFinite())
+            throw InputError(file, f.path_of("target_size_m"), "three sizes in metres, each above 0");
+    }
     f.reject_unknown_keys();
     return c;
 }
@@ -257,9 +311,10 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
     if (target) {
         // The supervised run EAO needs is only possible with ground truth; it is stored here so
         // that evaluate_report scores exactly what this configuration did.
-        const SupervisedRun run = supervised_run(s, config, *target);
         out["target"] = *target;
-        out["supervised"] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
+        out["supervised"] = nlohmann::json::object();
+        for (const auto& [name, run] : supervised_runs(s, config, *target))
+            out["supervised"][name] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
     }
     return out;
 }
@@ -272,13 +327,17 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
     try {
         std::vector<Detection> detections;
         for (const auto& j : report.at("detections")) detections.push_back(detection_from_json(j));
-        SupervisedRun run;
-        run.iou = report["supervised"].at("iou").get<std::vector<double>>();
-        run.initialised = report["supervised"].at("initialised").get<std::vector<bool>>();
-        run.failures = report["supervised"].at("failures").get<int>();
-        if (run.iou.size() != detections.size() || run.initialised.size() != detections.size())
-            throw InputError(file, "supervised", "holds " + std::to_string(run.iou.size()) + " frames, the detections " +
-                                                     std::to_string(detections.size()));
+        SupervisedRuns runs;
+        for (const auto& [name, box, kind] : scored_kinds()) {
+            const auto& j = report["supervised"].at(name);
+            SupervisedRun& run = runs[name];
+            run.iou = j.at("iou").get<std::vector<double>>();
+            run.initialised = j.at("initialised").get<std::vector<bool>>();
+            run.failures = j.at("failures").get<int>();
+            if (run.iou.size() != detections.size() || run.initialised.size() != detections.size())
+                throw InputError(file, "supervised." + name, "holds " + std::to_string(run.iou.size()) + " frames, the detections " +
+                                                                 std::to_string(detections.size()));
+        }
         // Frames gone from the dataset since detect ran would be scored against the wrong ground truth.
         if (detections.size() != s.frames.size())
             throw InputError(file, "detections",
@@ -287,7 +346,7 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
                                  "` again");
         check_target(s, report["target"].get<std::uint32_t>(), s.directory / "ground_truth.json");
         const auto interval = vot_length_interval({static_cast<int>(detections.size())});
-        nlohmann::json scores = evaluate(s, detections, run, report["target"].get<std::uint32_t>(), interval);
+        nlohmann::json scores = evaluate(s, detections, runs, report["target"].get<std::uint32_t>(), interval);
         scores["method"] = report.value("method", "");
         return scores;
     } catch (const nlohmann::json::exception& e) {

@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include "ladarsim/detect/box_metrics.h"
+
 namespace ladarsim::detect {
 
 Method method_from_string(const std::string& name) {
@@ -106,6 +108,7 @@ void TargetTracker::remember(double time_s, const OrientedBox& box) {
 void TargetTracker::reset(std::uint64_t, double time_s, const OrientedBox& truth) {
     history_.clear();
     remember(time_s, truth);
+    last_sensor_size_ = truth.size;
     kalman_->start(time_s, truth.centre);
 }
 
@@ -169,6 +172,8 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         d.found = true;
         d.box = chosen->box;
         d.box.size = d.box.size.cwiseMax(Eigen::Vector3d::Constant(config_.min_box_m));
+        d.sensor_box = sensor_aware_box(chosen->box, config_.footprint_divergences * divergence_rad, config_.target_size_m);
+        last_sensor_size_ = d.sensor_box.size;
         d.points = chosen->points.size();
         remember(time_s, d.box);
         if (config_.method == Method::kalman) {
@@ -180,6 +185,8 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         d.predicted = true;
         d.box.centre = *expected;
         d.box.size = last_size_;
+        d.sensor_box.centre = *expected;
+        d.sensor_box.size = last_sensor_size_;
     }
     return d;
 }

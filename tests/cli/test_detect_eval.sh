@@ -10,7 +10,19 @@ good="$src/tests/cli/small.json"
 grep -q "over 3 frames: [1-3] detected" "$work/stdout" || fail "plain detect found nothing: $(cat "$work/stdout")"
 "$bin" detect "$work/a" --radius -1 >/dev/null 2>&1
 [ $? -ne 0 ] || fail "detect accepted --radius -1"
-"$bin" eval "$work/a" --detections "$work/a/detections-vrbnn.json" >/dev/null 2>&1 || fail "eval of its own dataset failed"
+"$bin" detect "$work/a" --target-size 0.3 0 0.06 --out "$work/x.json" >/dev/null 2>&1
+[ $? -ne 0 ] || fail "detect accepted a target size of 0"
+"$bin" eval "$work/a" --detections "$work/a/detections-vrbnn.json" --json "$work/scores.json" >/dev/null 2>&1 ||
+  fail "eval of its own dataset failed"
+# The scores of both boxes, in 3-D and in bird's-eye view, each within [0, 1].
+python3 - "$work/scores.json" <<'PY' || fail "eval --json lacks a score: $(head -c 400 "$work/scores.json")"
+import json, sys
+s = json.load(open(sys.argv[1]))
+for scores in (s, s["point_box"]):
+    for key in ("eao", "eao_bev", "mean_iou", "mean_iou_bev"):
+        assert 0.0 <= scores[key] <= 1.0, key
+assert s["mean_l2_m"] is not None and all("iou_bev" in f and "points_iou" in f for f in s["per_frame"])
+PY
 "$bin" eval "$work/b" --detections "$work/a/detections-vrbnn.json" >/dev/null 2>"$work/stderr"
 rc=$?
 [ "$rc" -eq 2 ] || fail "eval with another dataset's detections exited $rc, expected 2"

@@ -52,10 +52,13 @@ TEST_CASE("a tracker that never detects its target scores no overlap and fails, 
     const detect::Sequence s = hovering_drone(40, false);
     detect::DetectorConfig config;
     config.lambda = 180.0;
-    const detect::SupervisedRun run = detect::supervised_run(s, config, 1);
-    // Re-initialised on the truth, it can only replay that box: nothing it found.
-    CHECK(run.failures >= 6);  // a failure every 6 frames: fail, skip 5, re-initialise
-    CHECK(eao_of(run, 40) <= 0.01);
+    // Re-initialised on the truth, it can only replay that box: nothing it found. So for both
+    // boxes, in 3-D and in bird's-eye view.
+    for (const auto& [name, run] : detect::supervised_runs(s, config, 1)) {
+        INFO(name);
+        CHECK(run.failures >= 6);  // a failure every 6 frames: fail, skip 5, re-initialise
+        CHECK(eao_of(run, 40) <= 0.01);
+    }
 }
 
 TEST_CASE("a tracker that detects a hovering target keeps its overlap and does not fail", "[detect][eao]") {
@@ -67,4 +70,20 @@ TEST_CASE("a tracker that detects a hovering target keeps its overlap and does n
     // Every frame's box is the cluster's, 0.06 x 0.24 x 0.08 m inside the 0.3 x 0.3 x 0.1 m truth:
     // IoU = 0.001152 / 0.009 = 0.128 in every frame, and so EAO.
     CHECK(eao_of(run, 40) == Approx(0.06 * 0.24 * 0.08 / (0.3 * 0.3 * 0.1)).epsilon(1e-3));
+}
+
+TEST_CASE("the sensor-aware box of a hovering target: the prior's size at the returns' centre", "[detect][eao]") {
+    const detect::Sequence s = hovering_drone(40, true);
+    detect::DetectorConfig config;
+    config.lambda = 180.0;
+    const detect::SupervisedRuns runs = detect::supervised_runs(s, config, 1);
+    // The cluster (0.06 x 0.24 x 0.08 m, centred on the drone) less a footprint's spread
+    // (1.5 x 0.62 mrad x 600 m = 0.56 m across the line of sight) is smaller than the prior
+    // 0.3 x 0.3 x 0.06 m on every axis: the box is the prior's, at the drone's centre. Against the
+    // 0.3 x 0.3 x 0.1 m truth: 0.6 in 3-D, 1 in bird's-eye view, in every frame.
+    CHECK(runs.at("sensor_3d").failures == 0);
+    CHECK(eao_of(runs.at("sensor_3d"), 40) == Approx(0.06 / 0.1).epsilon(1e-6));
+    CHECK(eao_of(runs.at("sensor_bev"), 40) == Approx(1.0).epsilon(1e-6));
+    // The box around the points, seen from above: 0.06 x 0.24 inside 0.3 x 0.3.
+    CHECK(eao_of(runs.at("points_bev"), 40) == Approx(0.06 * 0.24 / (0.3 * 0.3)).epsilon(1e-3));
 }

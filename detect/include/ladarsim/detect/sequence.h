@@ -3,7 +3,9 @@
 // scores against the ground truth.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -47,6 +49,13 @@ std::optional<OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint
 /// Algorithm 1 over every frame, as a deployed detector would run it.
 std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config);
 
+/// Which of a detection's boxes is scored (Detection::box, around its points, or sensor_box), and
+/// whether by the overlap of volumes or of footprints seen from above (bird's-eye view).
+enum class ScoredBox { points, sensor_aware };
+enum class Overlap { volume, bev };
+/// The IoU of a detection's box with the truth, 0 when it has none.
+double overlap(const Detection& d, ScoredBox box, Overlap kind, const OrientedBox& truth);
+
 /// VOT's supervised protocol for EAO: run, and after a failure (IoU 0) skip 5 frames and
 /// re-initialise on the ground truth. Per frame: IoU and whether the tracker was (re-)initialised.
 /// A predicted box scores only after a detection has confirmed the track since the last
@@ -56,11 +65,19 @@ struct SupervisedRun {
     std::vector<bool> initialised;
     int failures = 0;
 };
-SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target);
+SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target,
+                             ScoredBox box = ScoredBox::points, Overlap kind = Overlap::volume);
 
-/// Scores: per frame L2 and IoU, and mean L2 (frames with a box), mean IoU (all frames), EAO over
-/// `interval` (from vot_length_interval), failures, success and precision curves.
-nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRun& supervised,
+/// A supervised run for each scored box and overlap: "points_3d", "points_bev", "sensor_3d",
+/// "sensor_bev" (a failure, and so EAO, depends on which overlap is 0).
+using SupervisedRuns = std::map<std::string, SupervisedRun>;
+SupervisedRuns supervised_runs(const Sequence& s, const DetectorConfig& config, std::uint32_t target);
+
+/// Scores: per frame L2 and IoUs; mean L2 (frames with a box), mean IoU (all frames) and EAO over
+/// `interval` (from vot_length_interval) of the sensor-aware box, in 3-D and in bird's-eye view,
+/// the same of the box around the points under "point_box", failures, success and precision
+/// curves (of the sensor-aware box in 3-D).
+nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRuns& supervised,
                         std::uint32_t target, std::pair<int, int> interval);
 
 /// What a detections file records of the dataset it was computed on: its directory and manifest id.
@@ -85,7 +102,7 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
 
 /// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "detections"}
 /// and, when the ground truth holds `target` (default: default_target), "target" and
-/// "supervised" (the run of supervised_run: "iou", "initialised", "failures"), which
+/// "supervised" (the runs of supervised_runs by name, each "iou", "initialised", "failures"), which
 /// evaluate_report scores.
 nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
                                 std::optional<std::uint32_t> target = std::nullopt);

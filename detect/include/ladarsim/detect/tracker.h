@@ -49,6 +49,10 @@ struct DetectorConfig {
     /// extent, as Algorithm 1 draws them). Returns lie on beam axes, up to half a line pitch
     /// (0.13 m at 600 m) from a 0.06 m-tall drone, so a box around them alone may miss it.
     double min_box_m = 0.0;
+    /// The sensor-aware box's size where the returns cannot resolve it (sensor_aware_box), along
+    /// the sensor frame's x, y and z: a small quadcopter's (the paper's 0.3 m class; the bundled
+    /// model is 0.3 x 0.3 x 0.06 m).
+    Eigen::Vector3d target_size_m{0.3, 0.3, 0.06};
 };
 
 /// The target in one frame.
@@ -57,7 +61,8 @@ struct Detection {
     double time_s = 0.0;
     bool found = false;       ///< a box (from a cluster or a prediction)
     bool predicted = false;   ///< from the history, no cluster accepted
-    OrientedBox box;
+    OrientedBox box;          ///< around the accepted cluster's points (Algorithm 1's)
+    OrientedBox sensor_box;   ///< the same, knowing how the beams drew them (sensor_aware_box)
     std::size_t points = 0;   ///< in the accepted cluster
     double radius_m = 0.0;    ///< clustering radius used
 };
@@ -86,6 +91,7 @@ private:
     BackgroundSubtractor background_;
     std::deque<std::pair<double, Eigen::Vector3d>> history_;  ///< (time, centre) of accepted boxes
     Eigen::Vector3d last_size_ = Eigen::Vector3d::Constant(0.3);
+    Eigen::Vector3d last_sensor_size_ = Eigen::Vector3d::Constant(0.3);
     std::unique_ptr<Kalman> kalman_;
 };
 
