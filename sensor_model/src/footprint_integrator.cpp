@@ -1143,16 +1143,46 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         weight_on[static_cast<std::size_t>(node_side[k])] += node_weight[k];
         ++nodes_on[static_cast<std::size_t>(node_side[k])];
     }
+    // How each side's range spreads, by every point seen on it (irradiance-weighted): a side that
+    // few cells fall on (a grazing sliver spanning tens of metres of range) would otherwise be
+    // as compact an echo as its cells, and be detected where the whole footprint's stretched
+    // pulse is not.
+    std::array<double, 2> point_weight{0.0, 0.0}, point_mean{0.0, 0.0}, point_square{0.0, 0.0};
+    for (const Point& q : points) {
+        if (!q.seen.hit) continue;
+        const double g = irradiance(q.offset.x(), q.offset.y());
+        const auto side = static_cast<std::size_t>(q.side);
+        point_weight[side] += g;
+        point_mean[side] += g * q.seen.echo.range_m;
+        point_square[side] += g * q.seen.echo.range_m * q.seen.echo.range_m;
+    }
     for (int side = 0; side < 2; ++side) {
-        if (nodes_on[static_cast<std::size_t>(side)] == 0) continue;
-        if (!surface[static_cast<std::size_t>(side)]->hit) continue;
-        const double share = (side == cap_side ? cap : 1.0 - cap) / weight_on[static_cast<std::size_t>(side)];
+        const auto s = static_cast<std::size_t>(side);
+        if (nodes_on[s] == 0) continue;
+        if (!surface[s]->hit) continue;
+        const double share = (side == cap_side ? cap : 1.0 - cap) / weight_on[s];
+        // The variance of range the side's points show beyond its cells' own: each cell's echo is
+        // stretched by it (variances add).
+        double cell_weight = 0.0, cell_mean = 0.0, cell_square = 0.0;
+        for (std::size_t k = 0; k < offsets.size(); ++k) {
+            if (node_side[k] != side || !seen[k].hit) continue;
+            cell_weight += node_weight[k];
+            cell_mean += node_weight[k] * seen[k].echo.range_m;
+            cell_square += node_weight[k] * seen[k].echo.range_m * seen[k].echo.range_m;
+        }
+        double missing_variance = 0.0;
+        if (point_weight[s] > 0.0 && cell_weight > 0.0) {
+            const double points_variance = point_square[s] / point_weight[s] - std::pow(point_mean[s] / point_weight[s], 2);
+            const double cells_variance = cell_square / cell_weight - std::pow(cell_mean / cell_weight, 2);
+            missing_variance = std::max(0.0, points_variance - cells_variance);
+        }
         for (std::size_t k = 0; k < offsets.size(); ++k) {
             if (node_side[k] != side || !seen[k].hit) continue;
             SurfaceEcho e = seen[k].echo;
             e.weight = share * node_weight[k];
             e.energy_j = energy_of(seen[k]) * e.weight;
             e.sample = 0;
+            e.spread_m = std::sqrt(e.spread_m * e.spread_m + missing_variance);
             out.surface.push_back(e);
         }
     }

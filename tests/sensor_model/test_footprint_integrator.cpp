@@ -252,19 +252,27 @@ TEST_CASE("straight edges of an extended object: no beam missing, every energy w
     }
     CHECK(edge_beams > 20);
 }
-TEST_CASE("the horizon costs no more than a few times a look at the ground", "[footprint][horizon]") {
-    // The default scenario's terrain without its drone, the gimbal level: footprints graze the
-    // ground from 700 m out and reach to the ridge at 2 km (a footprint spans up to a kilometre of
-    // range), or pass above it. The same scene 2 deg down is plain ground. Work is counted in rays
-    // traced (deterministic); the speed ratio itself is the bench's (hard_cases, "horizon").
+namespace {
+
+/// The default scenario's terrain without its drone, noise off, the gimbal at `elevation_deg`
+/// straight ahead: level, footprints graze the ground from 700 m out and reach to the ridge at
+/// 2 km (a footprint spans up to a kilometre of range), or pass above it; 2 deg down, plain ground.
+Scenario horizon_scenario(double elevation_deg) {
     Scenario s = load_scenario(std::filesystem::path(LADARSIM_SOURCE_DIR) / "assets/scenarios/default.json");
     std::erase_if(s.scene.objects, [&](const scene::SceneObject& o) { return o.id == s.mount.cue_object_id; });
     s.mount.cue_object_id = 0;
     s.mount.gimbal_az_deg = 0.0;
+    s.mount.gimbal_el_deg = elevation_deg;
     s.render.noise = false;
-    Scenario level_scenario = s, down_scenario = s;  // a renderer keeps a reference to its scenario
-    level_scenario.mount.gimbal_el_deg = 0.0;
-    down_scenario.mount.gimbal_el_deg = -2.0;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("the horizon costs no more than a few times a look at the ground", "[footprint][horizon]") {
+    // Work is counted in rays traced (deterministic); the speed ratio itself is the bench's
+    // (hard_cases, "horizon").
+    const Scenario level_scenario = horizon_scenario(0.0), down_scenario = horizon_scenario(-2.0);
     FrameRenderer level(level_scenario), down(down_scenario);
     std::uint64_t level_rays = 0, down_rays = 0;
     for (std::uint64_t frame = 0; frame < 3; ++frame) {
@@ -275,4 +283,30 @@ TEST_CASE("the horizon costs no more than a few times a look at the ground", "[f
     }
     INFO("level " << level_rays << " rays, 2 deg down " << down_rays);
     CHECK(level_rays <= 8 * down_rays);
+}
+
+TEST_CASE("at the horizon each beam reports what 4096 sub-rays report", "[footprint][horizon]") {
+    // Footprints straddling the ridge's crest: the ground in front of it, grazed over tens of
+    // metres of range, and the ridge behind. A side of the crest that few cells fall on must keep
+    // the range spread its points show, or its echo is as compact as its cells and is detected
+    // where the whole footprint's stretched pulse is not (before: 32 such returns at 1,720 m in
+    // the crest's row, the ridge's energy doubled).
+    const Scenario adaptive_scenario = horizon_scenario(0.0);
+    Scenario reference_scenario = horizon_scenario(0.0);
+    reference_scenario.render.footprint_samples = 4096;
+    FrameRenderer adaptive(adaptive_scenario), reference(reference_scenario);
+    const Frame got = adaptive.render(0), want = reference.render(0);
+    std::map<std::uint32_t, double> first_want;
+    for (const Return& r : want.returns)
+        if (r.return_index == 0) first_want[std::uint32_t{r.row} << 16 | r.column] = r.range_m;
+    REQUIRE(want.returns.size() > 1000);
+    CHECK(std::abs(double(got.returns.size()) - double(want.returns.size())) <= 0.005 * double(want.returns.size()));
+    int far_off = 0;
+    for (const Return& r : got.returns) {
+        if (r.return_index != 0) continue;
+        const auto it = first_want.find(std::uint32_t{r.row} << 16 | r.column);
+        far_off += it == first_want.end() || std::abs(r.range_m - it->second) > 20.0;
+    }
+    INFO(got.returns.size() << " returns against " << want.returns.size());
+    CHECK(far_off <= 2);
 }
