@@ -26,7 +26,7 @@ def test_evaluate_scores_as_the_command_line_does(cli_small, cli_reports):
     detections, scores, detections_file = cli_reports
     assert ladarsim.evaluate(cli_small, detections) == scores
     assert ladarsim.evaluate(ladarsim.Dataset(cli_small), detections_file) == scores
-    assert scores["frames"] == 3 and "eao" in scores
+    assert scores["frames"] == 3 and "eao" in scores and "eao_bev" in scores and "eao_bev" in scores["point_box"]
 
 
 def test_unknown_or_mistyped_options_are_input_errors(cli_small):
