@@ -152,7 +152,8 @@ async function main() {
       next.add(points);
     }
 
-    // Ground truth (red) and detections (yellow), in the sensor frame.
+    // Ground truth (red) and detections, in the sensor frame: the box around the points (yellow)
+    // and the sensor-aware box (cyan, docs/detection.md).
     let boxes = 0, detectedBoxes = 0, targetBox = null;
     for (const o of objects) {
       if (o.id === target) targetBox = o;
@@ -163,6 +164,7 @@ async function main() {
     const d = detections?.detections?.[k];
     if (d && d.found && d.size_m) {
       next.add(boxLines({ centre_m: d.centre_m, size_m: d.size_m.map((s) => Math.max(s, 0.05)) }, 0xffff00));
+      if (d.sensor_box) next.add(boxLines(d.sensor_box, 0x00ffff));
       ++detectedBoxes;
     }
 
@@ -219,7 +221,8 @@ async function main() {
       ['range to target', targetBox ? `${Math.hypot(...targetBox.box_sensor.centre_m).toFixed(1)} m` : '-'],
       ['target returns', target === null ? '-' : targetReturns],
       ['L2', perFrame?.l2_m != null ? `${perFrame.l2_m.toFixed(3)} m` : '-'],
-      ['IoU', perFrame ? perFrame.iou.toFixed(3) : '-'],
+      ['IoU (sensor-aware box)', perFrame ? perFrame.iou.toFixed(3) : '-'],
+      ['IoU bird\'s-eye', perFrame?.iou_bev != null ? perFrame.iou_bev.toFixed(3) : '-'],
     ];
     document.getElementById('panel').innerHTML = rows.map(([a, b]) => `<tr><td>${a}</td><td>${b}</td></tr>`).join('');
     document.getElementById('frame-label').textContent = `${k + 1}/${frames.length}`;
