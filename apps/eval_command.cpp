@@ -24,7 +24,8 @@ struct EvalCommand {
         eval_cmd->add_option("--detections", detections_file, "Detections JSON written by `ladarsim detect`")->required();
         eval_cmd->add_option("--json", eval_json,
                              "Write the scores (mean_l2_m; mean_iou, mean_iou_bev, eao, eao_bev of the sensor-aware box and, "
-                             "under point_box, of the box around the points; frames, failures, per frame)");
+                             "under point_box, of the box around the points; every target's mota, motp_m, id_switches, "
+                             "ap_centre and, under tracking, the counts per class; frames, failures, per frame)");
         eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
         return eval_cmd;
     }
@@ -43,6 +44,12 @@ struct EvalCommand {
                     scores["mean_iou"].get<double>(), scores["mean_iou_bev"].get<double>(), scores["eao"].get<double>(),
                     scores["eao_bev"].get<double>(), points["mean_iou"].get<double>(), points["mean_iou_bev"].get<double>(),
                     points["eao"].get<double>(), points["eao_bev"].get<double>());
+        auto figure = [](const nlohmann::json& v) { return v.is_null() ? NAN : v.get<double>(); };
+        const auto& tracking = scores["tracking"];
+        std::printf("  every target (%d drone, bird and aircraft sightings): MOTA %.3f, MOTP %.3f m, %d ID switches, "
+                    "%d misses, %d false positives; centre-distance AP %.3f\n",
+                    tracking["objects"].get<int>(), figure(scores["mota"]), figure(scores["motp_m"]), scores["id_switches"].get<int>(),
+                    tracking["misses"].get<int>(), tracking["false_positives"].get<int>(), figure(scores["ap_centre"]));
         const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
         if (!json_path.empty()) write_json(json_path, scores);
         if (!eval_plot.empty()) {

@@ -123,6 +123,23 @@ SupervisedRuns supervised_runs(const Sequence& s, const DetectorConfig& config, 
     return runs;
 }
 
+std::vector<std::vector<TrackedObject>> track_sequence(const Sequence& s, const DetectorConfig& config) {
+    MultiTargetTracker tracker(config, s.sensor, s.background);
+    std::vector<std::vector<TrackedObject>> out;
+    for (std::size_t i = 0; i < s.frames.size(); ++i) out.push_back(tracker.process(s.time_s[i], s.frames[i]));
+    return out;
+}
+
+std::vector<std::vector<TruthCentre>> tracking_truth(const Sequence& s) {
+    std::vector<std::vector<TruthCentre>> out(s.frames.size());
+    for (std::size_t i = 0; i < s.frames.size() && i < s.truth.size(); ++i)
+        for (const auto& o : s.truth[i].objects) {
+            if (o.returns == 0 || (o.object_class != "drone" && o.object_class != "bird" && o.object_class != "plane")) continue;
+            out[i].push_back({o.object_id, o.object_class, truth_box(s, i, o.object_id)->centre});
+        }
+    return out;
+}
+
 SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, std::uint32_t target, ScoredBox box, Overlap kind) {
     constexpr std::size_t kSkipAfterFailure = 5;  // VOT: re-initialise five frames after a failure
     SupervisedRun run;
@@ -274,6 +291,7 @@ nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
             {"bias_m", c.bias_m},          {"resolution_m", c.background_resolution_m},
             {"min_neighbours", c.min_neighbours}, {"max_diagonal_m", c.max_diagonal_m},
             {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m},
+            {"max_object_diagonal_m", c.max_object_diagonal_m},
             {"target_size_m", {c.target_size_m.x(), c.target_size_m.y(), c.target_size_m.z()}}};
 }
 
@@ -290,6 +308,7 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
     c.max_diagonal_m = f.number("max_diagonal_m", 0.0, kLarge, c.max_diagonal_m);
     c.max_speed_mps = f.number("max_speed_mps", 0.0, kLarge, c.max_speed_mps);
     c.min_box_m = f.number("min_box_m", 0.0, kLarge, c.min_box_m);
+    c.max_object_diagonal_m = f.number("max_object_diagonal_m", 0.0, kLarge, c.max_object_diagonal_m);
     if (f.has("target_size_m")) {
         c.target_size_m = f.vec3("target_size_m");
         if (!(c.target_size_m.array() > 0.0).all() || !c.target_size_m.allFinite())
@@ -308,6 +327,23 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
                           {"dataset", dataset_record(s)},
                           {"detections", nlohmann::json::array()}};
     for (const auto& d : detect_sequence(s, config)) out["detections"].push_back(to_json(d));
+    auto box_json = [](const OrientedBox& b) {
+        return nlohmann::json{{"centre_m", {b.centre.x(), b.centre.y(), b.centre.z()}}, {"size_m", {b.size.x(), b.size.y(), b.size.z()}}};
+    };
+    out["tracks"] = nlohmann::json::array();
+    for (const auto& frame : track_sequence(s, config)) {
+        nlohmann::json tracks = nlohmann::json::array();
+        for (const TrackedObject& t : frame) {
+            nlohmann::json j = box_json(t.box);
+            j["track"] = t.track;
+            j["sensor_box"] = box_json(t.sensor_box);
+            j["points"] = t.points;
+            j["predicted"] = t.predicted;
+            j["score"] = t.score;
+            tracks.push_back(j);
+        }
+        out["tracks"].push_back(tracks);
+    }
     if (target) {
         // The supervised run EAO needs is only possible with ground truth; it is stored here so
         // that evaluate_report scores exactly what this configuration did.
@@ -348,6 +384,37 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
         const auto interval = vot_length_interval({static_cast<int>(detections.size())});
         nlohmann::json scores = evaluate(s, detections, runs, report["target"].get<std::uint32_t>(), interval);
         scores["method"] = report.value("method", "");
+        // Every target: the tracks' sensor-aware box centres against every drone, bird and aircraft.
+        const auto& track_frames = report.at("tracks");
+        if (track_frames.size() != detections.size())
+            throw InputError(file, "tracks", "holds " + std::to_string(track_frames.size()) + " frames, the detections " +
+                                                 std::to_string(detections.size()));
+        std::vector<std::vector<TrackCentre>> hypotheses(track_frames.size());
+        for (std::size_t f = 0; f < track_frames.size(); ++f)
+            for (const auto& t : track_frames[f]) {
+                const auto& c = t.at("sensor_box").at("centre_m");
+                hypotheses[f].push_back({t.at("track").get<std::uint32_t>(),
+                                         Eigen::Vector3d(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()),
+                                         t.at("score").get<double>()});
+            }
+        const auto truth = tracking_truth(s);
+        constexpr double kGate_m = 2.0;
+        const ClearMot mot = clear_mot(truth, hypotheses, kGate_m);
+        auto number = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
+        nlohmann::json per_class = nlohmann::json::object();
+        for (const auto& [cls, c] : mot.per_class)
+            per_class[cls] = {{"objects", c.objects}, {"matches", c.matches}, {"misses", c.misses}, {"id_switches", c.id_switches},
+                              {"recall", c.objects ? nlohmann::json(double(c.matches) / c.objects) : nlohmann::json(nullptr)},
+                              {"motp_m", c.matches ? nlohmann::json(c.distance_sum_m / c.matches) : nlohmann::json(nullptr)}};
+        nlohmann::json ap = nlohmann::json::object();
+        for (const double t : {0.25, 0.5, 1.0, 2.0}) ap[std::to_string(t).substr(0, 4) + "_m"] = number(centre_distance_ap(truth, hypotheses, t));
+        scores["mota"] = number(mot.mota());
+        scores["motp_m"] = number(mot.motp_m());
+        scores["id_switches"] = mot.all.id_switches;
+        scores["ap_centre"] = number(mean_centre_distance_ap(truth, hypotheses));
+        scores["tracking"] = {{"gate_m", kGate_m},        {"objects", mot.all.objects},  {"matches", mot.all.matches},
+                              {"misses", mot.all.misses}, {"false_positives", mot.false_positives},
+                              {"ap_centre_at", ap},       {"per_class", per_class}};
         return scores;
     } catch (const nlohmann::json::exception& e) {
         throw InputError(file, "detections", std::string("not a report of ladarsim detect: ") + e.what());

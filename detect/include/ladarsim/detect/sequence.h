@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/dataset/ground_truth_file.h"
+#include "ladarsim/detect/multi_target.h"
 #include "ladarsim/detect/tracker.h"
+#include "ladarsim/detect/tracking_metrics.h"
 
 namespace ladarsim::detect {
 
@@ -48,6 +50,14 @@ std::optional<OrientedBox> truth_box(const Sequence& s, std::size_t i, std::uint
 
 /// Algorithm 1 over every frame, as a deployed detector would run it.
 std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& config);
+
+/// MultiTargetTracker over every frame: the confirmed tracks of each.
+std::vector<std::vector<TrackedObject>> track_sequence(const Sequence& s, const DetectorConfig& config);
+
+/// The objects a tracker of every target should follow, per frame: drones, birds and aircraft
+/// with at least one return in the frame (the static world and clouds are not targets), at the
+/// centre of truth_box.
+std::vector<std::vector<TruthCentre>> tracking_truth(const Sequence& s);
 
 /// Which of a detection's boxes is scored (Detection::box, around its points, or sensor_box), and
 /// whether by the overlap of volumes or of footprints seen from above (bird's-eye view).
@@ -100,7 +110,9 @@ nlohmann::json to_json(const DetectorConfig& config, const SensorGeometry& senso
 /// problem) for an unknown key or a value of the wrong type or range.
 DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file);
 
-/// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "detections"}
+/// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "detections",
+/// "tracks" (track_sequence's per frame: track, centre_m, size_m, sensor_box, points, predicted,
+/// score)}
 /// and, when the ground truth holds `target` (default: default_target), "target" and
 /// "supervised" (the runs of supervised_runs by name, each "iou", "initialised", "failures"), which
 /// evaluate_report scores.
@@ -108,7 +120,9 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
                                 std::optional<std::uint32_t> target = std::nullopt);
 
 /// The scores of a detection report (as detection_report writes it) as `ladarsim eval` reports
-/// them: evaluate's over VOT's interval of sequence lengths, plus "method". Throws InputError
+/// them: evaluate's over VOT's interval of sequence lengths, plus "method", and the tracks' CLEAR
+/// MOT (2 m gate) and centre-distance AP against tracking_truth: "mota", "motp_m", "id_switches",
+/// "ap_centre", and under "tracking" the counts and per class. Throws InputError
 /// naming `file` for a report without a supervised run (its dataset had no ground truth).
 nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, const std::string& file);
 

@@ -28,6 +28,9 @@ struct DetectorConfig {
     double background_resolution_m = 1.0;
     int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
     double max_diagonal_m = 1.0;     ///< occlusion removal
+    /// Occlusion removal when every target is tracked (MultiTargetTracker): up to an airliner.
+    /// Algorithm 1's 1 m is for its one small target; the static world is already subtracted.
+    double max_object_diagonal_m = 80.0;
     /// Occlusion removal also allows a footprint's width per metre of range (plausible_targets):
     /// this many times the sensor's divergence, the width of a footprint truncated at 1.5 1/e^2
     /// radii (0.93 mrad for the paper's 0.62 mrad beam: 1.9 m at 2 km).
