@@ -21,8 +21,8 @@ configs=(
   "vrbnn|--method vrbnn --lambda 180"
   "kalman|--method kalman --lambda 180"
 )
-echo "| dataset | detector | mean L2 (m) | mean IoU | IoU, bird's-eye | EAO | EAO, bird's-eye | points' box: IoU / bird's-eye / EAO bird's-eye | failures | frames lost |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| dataset | detector | mean L2 (m) | mean IoU | IoU, bird's-eye | EAO | EAO, bird's-eye | points' box: IoU / bird's-eye / EAO bird's-eye | failures | frames lost | every target: MOTA / AP |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for n in "${names[@]}"; do
   dir=$root/$n
   [ -f "$dir/manifest.json" ] || $bin render "assets/scenarios/$n.json" --out "$dir" --quiet >/dev/null
@@ -36,8 +36,9 @@ import json, sys
 e = json.load(open('$dir/eval-$name.json'))
 l2 = '-' if e['mean_l2_m'] is None else '%.3f' % e['mean_l2_m']
 p = e['point_box']
-print('| ${n#dataset} | $name | %s | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f / %.3f | %d | %d |' % (
+f = lambda v: '-' if v is None else '%.3f' % v
+print('| ${n#dataset} | $name | %s | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f / %.3f | %d | %d | %s / %s |' % (
     l2, e['mean_iou'], e['mean_iou_bev'], e['eao'], e['eao_bev'], p['mean_iou'], p['mean_iou_bev'], p['eao_bev'],
-    e['failures'], e['frames_lost']))"
+    e['failures'], e['frames_lost'], f(e['mota']), f(e['ap_centre'])))"
   done
 done
