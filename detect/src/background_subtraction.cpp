@@ -27,8 +27,10 @@ struct BackgroundSubtractor::VoxelSet {
     }
 };
 
-BackgroundSubtractor::BackgroundSubtractor(const Points& map, double resolution_m) : resolution_(resolution_m) {
+BackgroundSubtractor::BackgroundSubtractor(const Points& map, double resolution_m, double range_tolerance_m)
+    : resolution_(resolution_m), range_tolerance_(range_tolerance_m) {
     if (!(resolution_m > 0.0)) throw std::invalid_argument("background subtraction resolution must be positive");
+    if (!(range_tolerance_m >= 0.0)) throw std::invalid_argument("background subtraction range tolerance must not be negative");
     voxels_ = std::make_unique<VoxelSet>();
     voxels_->inverse_resolution = 1.0 / resolution_m;
     std::unordered_set<std::uint64_t> occupied;
@@ -45,9 +47,20 @@ BackgroundSubtractor::~BackgroundSubtractor() = default;
 
 Points BackgroundSubtractor::subtract(const Points& frame) const {
     Points kept;
+    auto near_map = [&](const Eigen::Vector3f& q) {
+        const auto v = voxels_->voxel(q);
+        return voxels_->near_map.contains(VoxelSet::key(v[0], v[1], v[2]));
+    };
+    // Steps along the line of sight of a voxel each (the dilated voxels leave no gap between them).
+    const int steps = static_cast<int>(std::ceil(range_tolerance_ / resolution_));
     for (const auto& p : frame) {
-        const auto v = voxels_->voxel(p);
-        if (!voxels_->near_map.contains(VoxelSet::key(v[0], v[1], v[2]))) kept.push_back(p);
+        bool background = near_map(p);
+        const float range = p.norm();
+        if (!background && steps > 0 && range > 0.0f) {
+            const Eigen::Vector3f step = p * static_cast<float>(range_tolerance_ / steps / range);
+            for (int k = 1; k <= steps && !background; ++k) background = near_map(p + float(k) * step) || near_map(p - float(k) * step);
+        }
+        if (!background) kept.push_back(p);
     }
     return kept;
 }

@@ -22,7 +22,7 @@ struct MultiTargetTracker::Track {
 };
 
 MultiTargetTracker::MultiTargetTracker(const DetectorConfig& config, const SensorGeometry& sensor, const Points& background_map)
-    : config_(config), sensor_(sensor), background_(background_map, config.background_resolution_m) {}
+    : config_(config), sensor_(sensor), background_(background_map, config.background_resolution_m, config.background_range_tolerance_m) {}
 
 MultiTargetTracker::~MultiTargetTracker() = default;
 

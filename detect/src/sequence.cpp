@@ -289,6 +289,7 @@ Detection detection_from_json(const nlohmann::json& j) {
 nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
     return {{"radius_m", c.rbnn_radius_m}, {"lambda", c.lambda.value_or(default_lambda(sensor))},
             {"bias_m", c.bias_m},          {"resolution_m", c.background_resolution_m},
+            {"range_tolerance_m", c.background_range_tolerance_m},
             {"min_neighbours", c.min_neighbours}, {"max_diagonal_m", c.max_diagonal_m},
             {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m},
             {"max_object_diagonal_m", c.max_object_diagonal_m},
@@ -304,6 +305,7 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
     if (f.has("lambda")) c.lambda = f.number("lambda", 1e-9, kLarge);
     c.bias_m = f.number("bias_m", 0.0, kLarge, c.bias_m);
     c.background_resolution_m = f.number("resolution_m", 1e-6, kLarge, c.background_resolution_m);
+    c.background_range_tolerance_m = f.number("range_tolerance_m", 0.0, kLarge, c.background_range_tolerance_m);
     c.min_neighbours = static_cast<int>(f.integer("min_neighbours", 0, 1'000'000, c.min_neighbours));
     c.max_diagonal_m = f.number("max_diagonal_m", 0.0, kLarge, c.max_diagonal_m);
     c.max_speed_mps = f.number("max_speed_mps", 0.0, kLarge, c.max_speed_mps);

@@ -85,8 +85,9 @@ void bind_detection(py::module_& m) {
           R"(Run Algorithm 1 (docs/detection.md) over a dataset (a Dataset or its directory) and return
 the report `ladarsim detect` writes: {"method", "config", "detections", and with ground truth
 "target", "supervised"}. method: "rbnn", "vrbnn" or "kalman"; options: radius_m, lambda (or
-lambda_), bias_m, resolution_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m,
-target_size_m (the sensor-aware box's size prior, [x, y, z]), and target (the ground-truth id to
+lambda_), bias_m, resolution_m, range_tolerance_m, min_neighbours, max_diagonal_m, max_speed_mps,
+min_box_m, max_object_diagonal_m, target_size_m (the sensor-aware box's size prior, [x, y, z]),
+and target (the ground-truth id to
 score; default the first drone). Unknown options raise InputError.)");
     m.def("evaluate", &evaluate_detections, py::arg("dataset"), py::arg("detections"),
           R"(Score a detection report (the dict detect() returns, or the path of a file `ladarsim detect`

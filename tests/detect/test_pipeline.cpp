@@ -53,6 +53,22 @@ TEST_CASE("background subtraction removes exactly the points near the map", "[de
     CHECK(subtract.subtract({}).empty());
 }
 
+TEST_CASE("background subtraction with a range tolerance removes what lies along the line of sight of the map", "[detect]") {
+    // A 20 m wall 2 km ahead (x = 2000, |y|, |z| <= 10) in 1 m voxels dilated by one: points up to
+    // about 2 m from it survive a plain subtraction.
+    const Points map = wall(2000.0f, 0.5f, 40);
+    const Points behind = {{2003.5f, 1.0f, 1.0f}, {1996.6f, -2.0f, 3.0f}};  // 3.4-3.5 m along the line of sight
+    const Points beside = {{2000.0f, 13.6f, 0.0f}};                         // 3.6 m off the wall's edge, across
+    const Points far = {{2006.0f, 0.0f, 0.0f}};                             // 6 m behind
+    const BackgroundSubtractor plain(map, 1.0), tolerant(map, 1.0, 3.0);
+    CHECK(plain.subtract(behind).size() == 2);
+    CHECK(tolerant.subtract(behind).empty());
+    // Only along the line of sight: across it, and beyond the tolerance, points stay.
+    CHECK(tolerant.subtract(beside).size() == 1);
+    CHECK(tolerant.subtract(far).size() == 1);
+    CHECK_THROWS_AS(BackgroundSubtractor(map, 1.0, -1.0), std::invalid_argument);
+}
+
 TEST_CASE("RBNN: a radius above the point spacing recovers a planted cluster, one below fragments it", "[detect]") {
     Points cloud = drone_at({600.0f, 0.0f, 20.0f});
     const Points other = drone_at({610.0f, 5.0f, 21.0f}, 4, 1);

@@ -101,7 +101,8 @@ nlohmann::json to_json(const Detection& d);
 Detection detection_from_json(const nlohmann::json& j);
 
 /// The settings a detection run records ("config" of its report): radius_m, lambda, bias_m,
-/// resolution_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m.
+/// resolution_m, range_tolerance_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m,
+/// max_object_diagonal_m, target_size_m.
 /// `config` as a detection report records it, its lambda resolved for `sensor` (default_lambda).
 nlohmann::json to_json(const DetectorConfig& config, const SensorGeometry& sensor);
 
