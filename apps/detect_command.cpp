@@ -46,8 +46,8 @@ struct DetectCommand {
             ->check(positive_number())
             ->capture_default_str();
         detect_cmd->add_option("--range-tolerance", detector.background_range_tolerance_m,
-                               "Background subtraction also removes a point whose line of sight meets the initial map within "
-                               "this distance, m (grazing footprints report ranges off their axis' hit)")
+                               "Tracking every target, background subtraction also removes a point whose line of sight meets the "
+                               "initial map within this distance, m (grazing footprints report ranges off their axis' hit)")
             ->check(positive_number(true))
             ->capture_default_str();
         detect_cmd->add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)")

@@ -71,7 +71,7 @@ struct TargetTracker::Kalman {
 TargetTracker::TargetTracker(const DetectorConfig& config, const SensorGeometry& sensor, const Points& background_map)
     : config_(config),
       sensor_(sensor),
-      background_(background_map, config.background_resolution_m, config.background_range_tolerance_m),
+      background_(background_map, config.background_resolution_m),
       kalman_(std::make_unique<Kalman>()) {}
 
 TargetTracker::~TargetTracker() = default;

@@ -26,8 +26,11 @@ struct DetectorConfig {
     std::optional<double> lambda;
     double bias_m = 0.01;
     double background_resolution_m = 1.0;
-    /// Background subtraction also removes a point whose line of sight meets the map within this
-    /// distance of it (BackgroundSubtractor: grazing footprints report ranges off their axis' hit).
+    /// When every target is tracked (MultiTargetTracker), background subtraction also removes a
+    /// point whose line of sight meets the map within this distance of it (BackgroundSubtractor:
+    /// grazing footprints report ranges off their axis' hit). Algorithm 1's tracker of the cued
+    /// target keeps the plain subtraction: its drone passes within a metre of the map along the
+    /// line of sight in some frames of dataset 1, and would vanish there.
     double background_range_tolerance_m = 3.0;
     int min_neighbours = 3;          ///< nMin: neighbours within the clustering radius to keep a point
     double max_diagonal_m = 1.0;     ///< occlusion removal
