@@ -230,7 +230,8 @@ private:
                  " bytes, the file has " + std::to_string(data_.size()));
         }
         PcdCloud cloud = empty_cloud();
-        std::memcpy(cloud.data().data(), data_.data(), cloud.data().size());
+        // An empty cloud's buffer may be a null pointer, which memcpy must not get even for 0 bytes.
+        if (!cloud.data().empty()) std::memcpy(cloud.data().data(), data_.data(), cloud.data().size());
         return cloud;
     }
 
