@@ -1097,7 +1097,6 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
     const double a_cap = normal.dot(Eigen::Vector2d(std::cos(lo[0]), std::sin(lo[0]))) > normal.dot(Eigen::Vector2d(std::cos(hi[0]), std::sin(hi[0])))
                              ? lo[0] : hi[0];
     const int cap_side = a_cap == lo[0] ? lo_side[0] : 1 - lo_side[0];
-    (void)a_cap;
     // Every probe must lie on its surface's side (those within a bisection's step of the chord
     // excepted): else the edge is not straight, or there is more than one.
     const double margin = 2.0 * rim * 2.0 * std::numbers::pi / kRim / (1 << kBisections) + 1e-3 * r_max;
@@ -1143,24 +1142,43 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         weight_on[static_cast<std::size_t>(node_side[k])] += node_weight[k];
         ++nodes_on[static_cast<std::size_t>(node_side[k])];
     }
-    // How each side's range spreads, by every point seen on it (irradiance-weighted): a side that
-    // few cells fall on (a grazing sliver spanning tens of metres of range) would otherwise be
-    // as compact an echo as its cells, and be detected where the whole footprint's stretched
-    // pulse is not.
-    std::array<double, 2> point_weight{0.0, 0.0}, point_mean{0.0, 0.0}, point_square{0.0, 0.0};
+    // Each side's points, irradiance-weighted: how its range spreads, and for a side no cell falls
+    // on, its energy and the point nearest the axis. A side that few cells fall on (a grazing
+    // sliver spanning tens of metres of range) would otherwise be as compact an echo as its cells,
+    // and be detected where the whole footprint's stretched pulse is not.
+    struct SidePoints {
+        double weight = 0.0, energy = 0.0, range = 0.0, range2 = 0.0;
+        const Point* nearest = nullptr;
+        double mean() const { return range / weight; }
+        double variance() const { return std::max(0.0, range2 / weight - mean() * mean()); }
+    };
+    std::array<SidePoints, 2> side_points;
     for (const Point& q : points) {
         if (!q.seen.hit) continue;
+        SidePoints& m = side_points[static_cast<std::size_t>(q.side)];
         const double g = irradiance(q.offset.x(), q.offset.y());
-        const auto side = static_cast<std::size_t>(q.side);
-        point_weight[side] += g;
-        point_mean[side] += g * q.seen.echo.range_m;
-        point_square[side] += g * q.seen.echo.range_m * q.seen.echo.range_m;
+        m.weight += g;
+        m.range += g * q.seen.echo.range_m;
+        m.range2 += g * q.seen.echo.range_m * q.seen.echo.range_m;
+        if (nodes_on[static_cast<std::size_t>(q.side)] == 0) m.energy += g * energy_of(q.seen);
+        if (!m.nearest || q.offset.squaredNorm() < m.nearest->offset.squaredNorm()) m.nearest = &q;
     }
     for (int side = 0; side < 2; ++side) {
         const auto s = static_cast<std::size_t>(side);
-        if (nodes_on[s] == 0) continue;
         if (!surface[s]->hit) continue;
-        const double share = (side == cap_side ? cap : 1.0 - cap) / weight_on[s];
+        const double share = side == cap_side ? cap : 1.0 - cap;
+        const SidePoints& m = side_points[s];
+        if (nodes_on[s] == 0) {
+            // A sliver no cell falls on takes the mean of its points.
+            SurfaceEcho e = m.nearest->seen.echo;
+            e.range_m = m.mean();
+            e.weight = share;
+            e.energy_j = share * m.energy / m.weight;
+            e.sample = 0;
+            e.spread_m = std::sqrt(m.variance());
+            out.surface.push_back(e);
+            continue;
+        }
         // The variance of range the side's points show beyond its cells' own: each cell's echo is
         // stretched by it (variances add).
         double cell_weight = 0.0, cell_mean = 0.0, cell_square = 0.0;
@@ -1170,46 +1188,19 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
             cell_mean += node_weight[k] * seen[k].echo.range_m;
             cell_square += node_weight[k] * seen[k].echo.range_m * seen[k].echo.range_m;
         }
-        double missing_variance = 0.0;
-        if (point_weight[s] > 0.0 && cell_weight > 0.0) {
-            const double points_variance = point_square[s] / point_weight[s] - std::pow(point_mean[s] / point_weight[s], 2);
-            const double cells_variance = cell_square / cell_weight - std::pow(cell_mean / cell_weight, 2);
-            missing_variance = std::max(0.0, points_variance - cells_variance);
-        }
+        const double missing_variance =
+            m.weight > 0.0 && cell_weight > 0.0
+                ? std::max(0.0, m.variance() - (cell_square / cell_weight - std::pow(cell_mean / cell_weight, 2)))
+                : 0.0;
         for (std::size_t k = 0; k < offsets.size(); ++k) {
             if (node_side[k] != side || !seen[k].hit) continue;
             SurfaceEcho e = seen[k].echo;
-            e.weight = share * node_weight[k];
+            e.weight = share / weight_on[s] * node_weight[k];
             e.energy_j = energy_of(seen[k]) * e.weight;
             e.sample = 0;
             e.spread_m = std::sqrt(e.spread_m * e.spread_m + missing_variance);
             out.surface.push_back(e);
         }
-    }
-    for (int side = 0; side < 2; ++side) {
-        if (nodes_on[static_cast<std::size_t>(side)] > 0) continue;
-        const Seen& rep = *surface[static_cast<std::size_t>(side)];
-        if (!rep.hit) continue;
-        double g_sum = 0.0, e_sum = 0.0, r_sum = 0.0, r2_sum = 0.0;
-        const Point* nearest = nullptr;
-        for (const Point& q : points) {
-            if (q.side != side) continue;
-            const double g = irradiance(q.offset.x(), q.offset.y());
-            g_sum += g;
-            e_sum += g * energy_of(q.seen);
-            r_sum += g * q.seen.echo.range_m;
-            r2_sum += g * q.seen.echo.range_m * q.seen.echo.range_m;
-            if (!nearest || q.offset.squaredNorm() < nearest->offset.squaredNorm()) nearest = &q;
-        }
-        const double share = side == cap_side ? cap : 1.0 - cap;
-        const double range = r_sum / g_sum;
-        SurfaceEcho e = nearest->seen.echo;
-        e.range_m = range;
-        e.weight = share;
-        e.energy_j = share * e_sum / g_sum;
-        e.sample = 0;
-        e.spread_m = std::sqrt(std::max(0.0, r2_sum / g_sum - range * range));
-        out.surface.push_back(e);
     }
     return true;
 }
