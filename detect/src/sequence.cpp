@@ -105,6 +105,17 @@ double overlap(const Detection& d, ScoredBox box, Overlap kind, const OrientedBo
 
 namespace {
 
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d vector_of(const nlohmann::json& v) { return {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()}; }
+/// A box as detections files hold it: {"centre_m", "size_m"}.
+nlohmann::json box_json(const OrientedBox& b) { return {{"centre_m", vector_json(b.centre)}, {"size_m", vector_json(b.size)}}; }
+OrientedBox box_of(const nlohmann::json& j) {
+    OrientedBox b;
+    b.centre = vector_of(j.at("centre_m"));
+    b.size = vector_of(j.at("size_m"));
+    return b;
+}
+
 /// The names supervised_runs and a detection report give the scored boxes and overlaps.
 const std::vector<std::tuple<std::string, ScoredBox, Overlap>>& scored_kinds() {
     static const std::vector<std::tuple<std::string, ScoredBox, Overlap>> kinds = {
@@ -262,12 +273,10 @@ void check_same_dataset(const nlohmann::json& detections, const std::string& det
 }
 
 nlohmann::json to_json(const Detection& d) {
-    return {{"frame", d.frame}, {"time_s", d.time_s}, {"found", d.found}, {"predicted", d.predicted},
-            {"centre_m", {d.box.centre.x(), d.box.centre.y(), d.box.centre.z()}},
-            {"size_m", {d.box.size.x(), d.box.size.y(), d.box.size.z()}},
-            {"sensor_box", {{"centre_m", {d.sensor_box.centre.x(), d.sensor_box.centre.y(), d.sensor_box.centre.z()}},
-                            {"size_m", {d.sensor_box.size.x(), d.sensor_box.size.y(), d.sensor_box.size.z()}}}},
-            {"points", d.points}, {"radius_m", d.radius_m}};
+    nlohmann::json j = box_json(d.box);
+    j.update({{"frame", d.frame}, {"time_s", d.time_s}, {"found", d.found}, {"predicted", d.predicted},
+              {"sensor_box", box_json(d.sensor_box)}, {"points", d.points}, {"radius_m", d.radius_m}});
+    return j;
 }
 
 Detection detection_from_json(const nlohmann::json& j) {
@@ -276,11 +285,8 @@ Detection detection_from_json(const nlohmann::json& j) {
     d.time_s = j.at("time_s").get<double>();
     d.found = j.at("found").get<bool>();
     d.predicted = j.at("predicted").get<bool>();
-    auto vector3 = [](const nlohmann::json& v) { return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()); };
-    d.box.centre = vector3(j.at("centre_m"));
-    d.box.size = vector3(j.at("size_m"));
-    d.sensor_box.centre = vector3(j.at("sensor_box").at("centre_m"));
-    d.sensor_box.size = vector3(j.at("sensor_box").at("size_m"));
+    d.box = box_of(j);
+    d.sensor_box = box_of(j.at("sensor_box"));
     d.points = j.at("points").get<std::size_t>();
     d.radius_m = j.at("radius_m").get<double>();
     return d;
@@ -293,7 +299,7 @@ nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
             {"min_neighbours", c.min_neighbours}, {"max_diagonal_m", c.max_diagonal_m},
             {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m},
             {"max_object_diagonal_m", c.max_object_diagonal_m},
-            {"target_size_m", {c.target_size_m.x(), c.target_size_m.y(), c.target_size_m.z()}}};
+            {"target_size_m", vector_json(c.target_size_m)}};
 }
 
 DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file) {
@@ -329,9 +335,6 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
                           {"dataset", dataset_record(s)},
                           {"detections", nlohmann::json::array()}};
     for (const auto& d : detect_sequence(s, config)) out["detections"].push_back(to_json(d));
-    auto box_json = [](const OrientedBox& b) {
-        return nlohmann::json{{"centre_m", {b.centre.x(), b.centre.y(), b.centre.z()}}, {"size_m", {b.size.x(), b.size.y(), b.size.z()}}};
-    };
     out["tracks"] = nlohmann::json::array();
     for (const auto& frame : track_sequence(s, config)) {
         nlohmann::json tracks = nlohmann::json::array();
@@ -393,12 +396,9 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
                                                  std::to_string(detections.size()));
         std::vector<std::vector<TrackCentre>> hypotheses(track_frames.size());
         for (std::size_t f = 0; f < track_frames.size(); ++f)
-            for (const auto& t : track_frames[f]) {
-                const auto& c = t.at("sensor_box").at("centre_m");
-                hypotheses[f].push_back({t.at("track").get<std::uint32_t>(),
-                                         Eigen::Vector3d(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()),
-                                         t.at("score").get<double>()});
-            }
+            for (const auto& t : track_frames[f])
+                hypotheses[f].push_back(
+                    {t.at("track").get<std::uint32_t>(), vector_of(t.at("sensor_box").at("centre_m")), t.at("score").get<double>()});
         const auto truth = tracking_truth(s);
         constexpr double kGate_m = 2.0;
         const ClearMot mot = clear_mot(truth, hypotheses, kGate_m);
@@ -408,12 +408,14 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
             per_class[cls] = {{"objects", c.objects}, {"matches", c.matches}, {"misses", c.misses}, {"id_switches", c.id_switches},
                               {"recall", c.objects ? nlohmann::json(double(c.matches) / c.objects) : nlohmann::json(nullptr)},
                               {"motp_m", c.matches ? nlohmann::json(c.distance_sum_m / c.matches) : nlohmann::json(nullptr)}};
+        const CentreDistanceAp aps = centre_distance_aps(truth, hypotheses);
         nlohmann::json ap = nlohmann::json::object();
-        for (const double t : {0.25, 0.5, 1.0, 2.0}) ap[std::to_string(t).substr(0, 4) + "_m"] = number(centre_distance_ap(truth, hypotheses, t));
+        for (std::size_t k = 0; k < aps.at.size(); ++k)
+            ap[std::to_string(CentreDistanceAp::kThresholds_m[k]).substr(0, 4) + "_m"] = number(aps.at[k]);
         scores["mota"] = number(mot.mota());
         scores["motp_m"] = number(mot.motp_m());
         scores["id_switches"] = mot.all.id_switches;
-        scores["ap_centre"] = number(mean_centre_distance_ap(truth, hypotheses));
+        scores["ap_centre"] = number(aps.mean);
         scores["tracking"] = {{"gate_m", kGate_m},        {"objects", mot.all.objects},  {"matches", mot.all.matches},
                               {"misses", mot.all.misses}, {"false_positives", mot.false_positives},
                               {"ap_centre_at", ap},       {"per_class", per_class}};

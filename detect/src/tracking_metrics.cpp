@@ -199,11 +199,14 @@ double centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth, co
     return count ? sum / count / (1.0 - min_precision) : 0.0;
 }
 
-double mean_centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth,
-                               const std::vector<std::vector<TrackCentre>>& tracks) {
-    double sum = 0.0;
-    for (const double threshold : {0.25, 0.5, 1.0, 2.0}) sum += centre_distance_ap(truth, tracks, threshold);
-    return sum / 4.0;
+CentreDistanceAp centre_distance_aps(const std::vector<std::vector<TruthCentre>>& truth,
+                                     const std::vector<std::vector<TrackCentre>>& tracks) {
+    CentreDistanceAp ap;
+    for (std::size_t k = 0; k < ap.at.size(); ++k) {
+        ap.at[k] = centre_distance_ap(truth, tracks, CentreDistanceAp::kThresholds_m[k]);
+        ap.mean += ap.at[k] / static_cast<double>(ap.at.size());
+    }
+    return ap;
 }
 
 }  // namespace ladarsim::detect

@@ -76,6 +76,7 @@ TEST_CASE("centre-distance AP as nuScenes computes it, on a ranked list worked b
     CHECK(centre_distance_ap(truth, {{}}, 1.0) == 0.0);
     CHECK(std::isnan(centre_distance_ap({{}}, tracks, 1.0)));
     // The mean over 0.25, 0.5, 1 and 2 m (1 and 2 m as 0.5 m here).
-    CHECK(mean_centre_distance_ap(truth, tracks) ==
-          Approx((centre_distance_ap(truth, tracks, 0.25) + 3 * centre_distance_ap(truth, tracks, 0.5)) / 4));
+    const CentreDistanceAp aps = centre_distance_aps(truth, tracks);
+    CHECK(aps.at[0] == centre_distance_ap(truth, tracks, 0.25));
+    CHECK(aps.mean == Approx((centre_distance_ap(truth, tracks, 0.25) + 3 * centre_distance_ap(truth, tracks, 0.5)) / 4));
 }

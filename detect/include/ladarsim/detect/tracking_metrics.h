@@ -1,6 +1,7 @@
 #pragma once
 // Multi-object tracking scores by box centres: CLEAR MOT (Bernardin and Stiefelhagen 2008) and a
 // centre-distance average precision as nuScenes computes it (Caesar et al. 2020, calc_ap).
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -57,10 +58,15 @@ ClearMot clear_mot(const std::vector<std::vector<TruthCentre>>& truth, const std
 double centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth, const std::vector<std::vector<TrackCentre>>& tracks,
                           double threshold_m, double min_recall = 0.1, double min_precision = 0.1);
 
-/// The mean of centre_distance_ap at 0.25, 0.5, 1 and 2 m (nuScenes takes 0.5-4 m for cars; a
-/// drone is 0.3 m across).
-double mean_centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth,
-                               const std::vector<std::vector<TrackCentre>>& tracks);
+/// centre_distance_ap at 0.25, 0.5, 1 and 2 m (nuScenes takes 0.5-4 m for cars; a drone is
+/// 0.3 m across), and their mean.
+struct CentreDistanceAp {
+    static constexpr std::array<double, 4> kThresholds_m{0.25, 0.5, 1.0, 2.0};
+    std::array<double, 4> at{};  ///< at each of kThresholds_m
+    double mean = 0.0;
+};
+CentreDistanceAp centre_distance_aps(const std::vector<std::vector<TruthCentre>>& truth,
+                                     const std::vector<std::vector<TrackCentre>>& tracks);
 
 /// Least-total-cost assignment of rows to columns (Hungarian, O(n^3)) of a rows x columns matrix;
 /// returns for each row its column, or -1 (more rows than columns).
