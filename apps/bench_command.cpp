@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "command.h"
@@ -24,6 +25,8 @@ struct BenchCommand {
         bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about a minute)");
         bench_cmd->add_option("--json", bench_json, "Write every figure to this JSON file");
         bench_cmd->add_option("--scenario", bench_options.scenario, "Scenario to time")->check(CLI::ExistingFile)->capture_default_str();
+        bench_cmd->add_option("--hard-case", bench_options.hard_case,
+                              "Run only the hard cases whose name contains this (e.g. 'recorded map', 'edge'), nothing else");
         bench_cmd->add_option("--map-scenario", bench_options.map_scenario,
                               "Scenario over a recorded map, for speed against error there (skipped if it cannot load)")
             ->capture_default_str();
@@ -37,6 +40,11 @@ struct BenchCommand {
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), step.c_str());
         };
         const nlohmann::json result = bench::run_benchmarks(bench_options);
+        if (!bench_options.hard_case.empty()) {
+            if (result["hard_cases"].empty()) throw std::runtime_error("--hard-case: no hard case's name contains '" + bench_options.hard_case + "'");
+            print_hard_cases(result["hard_cases"]);
+            return write(result);
+        }
         std::printf("pipeline vs raw Embree (rays/s, same rays): %.2f\n", result["pipeline_vs_raw_embree"].get<double>());
         std::printf("real-time factor (default accuracy, vs the sensor's %.0f beams/s): %.1f\n",
                     result["realtime"]["sensor_beams_per_s"].get<double>(), result["realtime_factor"].get<double>());
@@ -59,6 +67,25 @@ struct BenchCommand {
                         p["footprint_samples"] == 0 ? "adaptive" : "19 sub-rays", p["pulses_per_s"].get<double>(),
                         p["rays_per_pulse"].get<double>(), p["returns_per_pulse"].get<double>());
         }
+        return write(result);
+    }
+
+    /// One line per hard case and setting: its errors against the reference and its speed.
+    static void print_hard_cases(const nlohmann::json& cases) {
+        for (const nlohmann::json& c : cases) {
+            for (const nlohmann::json& s : c["settings"]) {
+                std::printf("%s, %s: count %+.1f %%, range error mean %.1f / median %.1f mm, %d missing beams, %.1f rays/beam, %.0f beams/s\n",
+                            c["case"].get<std::string>().c_str(),
+                            s.value("reference_with_another_seed", false) ? "reference, another seed"
+                            : s["footprint_samples"] == 0 ? ("adaptive " + std::to_string(s["footprint_tolerance"].get<double>()).substr(0, 5)).c_str()
+                                                          : (std::to_string(s["footprint_samples"].get<int>()) + " fixed").c_str(),
+                            s["count_error_pct"].get<double>(), s["range_error_mm"].get<double>(), s["median_range_error_mm"].get<double>(),
+                            s["missing_beams"].get<int>(), s["rays_per_beam"].get<double>(), s["beams_per_s"].get<double>());
+            }
+        }
+    }
+
+    int write(const nlohmann::json& result) const {
         if (!bench_json.empty()) {
             write_json(bench_json, result);
             std::printf("wrote %s\n", bench_json.c_str());

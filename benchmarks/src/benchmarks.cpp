@@ -205,6 +205,11 @@ json recorded_map(const BenchOptions& options) {
 nlohmann::json run_benchmarks(const BenchOptions& options) {
     const Scenario scenario = sensor_model::load_scenario(options.scenario);
     json result;
+    if (!options.hard_case.empty()) {
+        result["hard_cases"] = hard_cases(scenario, options, options.hard_case);
+        result["quick"] = options.quick;
+        return result;
+    }
     options.progress("pipeline against raw Embree");
     result["pipeline"] = pipeline_against_raw(scenario, static_cast<std::uint64_t>(scenario.render.frames / 2));
     result["realtime"] = realtime(scenario, options);

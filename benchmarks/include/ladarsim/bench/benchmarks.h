@@ -15,6 +15,8 @@ struct BenchOptions {
     /// when it cannot be loaded, e.g. without ../shared/data).
     std::filesystem::path map_scenario = "assets/scenarios/dataset2-autzen.json";
     bool quick = false;  ///< fewer frames and sizes: about a minute
+    /// When set, only the hard cases whose name contains it are run (nothing else).
+    std::string hard_case;
     std::function<void(const std::string&)> progress = [](const std::string&) {};
 };
 
