@@ -282,6 +282,8 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
       small_object_rad_(0.0),
       aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
       footprint_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.render.footprint_samples,
+                 scenario.render.footprint_truncation),
+      map_cells_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, static_cast<int>(kFootprintSamples),
                  scenario.render.footprint_truncation) {
     small_object_rad_ = kSmallObjectFootprints * footprint_.max_offset_rad();
     if (!adaptive_) return;
@@ -334,19 +336,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     out.volume.clear();
     out.rays = 0;
     if (!adaptive_) {
-        thread_local std::vector<SubRay> sub_rays;
-        thread_local std::vector<double> uniforms;
-        sub_rays.resize(static_cast<std::size_t>(footprint_.samples()));
-        if (!scenario_.render.jitter) {
-            footprint_.fixed(sub_rays);
-        } else {
-            // Two cells per block of four draws.
-            uniforms.resize(2 * sub_rays.size());
-            RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, 0);
-            for (double& u : uniforms) u = draws.uniform();
-            footprint_.jittered(sub_rays, uniforms);
-        }
-        trace(aim, sub_rays, traced_.has_volumes(), frame, out);
+        stratified(aim, footprint_, traced_.has_volumes(), frame, out);
         return;
     }
 
@@ -463,8 +453,33 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     }
 }
 
+bool FootprintIntegrator::meets_map(const Region& region, std::span<const Probe* const> witnesses) const {
+    const auto map = [](const Seen& seen) { return seen.hit && seen.echo.object_id == scene::kBackgroundObjectId; };
+    return std::any_of(region.nodes.begin(), region.nodes.end(), [&](const Region::Node& n) { return n.weight > 0.0 && map(n.seen); }) ||
+           std::any_of(witnesses.begin(), witnesses.end(), [&](const Probe* p) {
+               return p->hit->hit && p->hit->hit->object_id == scene::kBackgroundObjectId && footprint_.within_truncation(p->x_rad, p->y_rad);
+           });
+}
+
+void FootprintIntegrator::stratified(const BeamAim& aim, const Footprint& cells, bool media, std::uint64_t frame,
+                                     BeamEchoes& out) const {
+    thread_local std::vector<SubRay> sub_rays;
+    thread_local std::vector<double> uniforms;
+    sub_rays.resize(static_cast<std::size_t>(cells.samples()));
+    if (!scenario_.render.jitter) {
+        cells.fixed(sub_rays);
+    } else {
+        // Two cells per block of four draws.
+        uniforms.resize(2 * sub_rays.size());
+        RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, 0);
+        for (double& u : uniforms) u = draws.uniform();
+        cells.jittered(sub_rays, uniforms);
+    }
+    trace(aim, sub_rays, media, frame, out);
+}
+
 void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses,
-                                 bool media, std::uint64_t frame, BeamEchoes& out, bool try_edge) const {
+                                 bool media, std::uint64_t frame, BeamEchoes& out, bool whole_footprint) const {
     const bool jitter = scenario_.render.jitter;
     auto place = [&](Region& r, Region::Node& n) {
         double ju = 0.5, jv = 0.5;
@@ -535,12 +550,20 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
         }
         scratch.assign(out.surface.begin(), out.surface.end());
         if (settled(regions, witnesses, scratch, out.volume)) break;
-        if (try_edge) {
+        if (whole_footprint) {
             // Unsettled at the first cells: one straight edge settles it at once, when it holds.
-            try_edge = false;
+            whole_footprint = false;
             out.surface.resize(fixed_surface);
             out.volume = fixed_volume;
-            if (regions.size() == 1 && straight_edge(aim, witnesses, out, regions.front())) break;
+            if (straight_edge(aim, witnesses, out, regions.front())) break;
+            // A recorded map's discs overlap and tilt at random, so its cells never agree:
+            // refinement would pay its bookkeeping for every sub-ray up to its budget and still
+            // judge energies only, not where in range they fall. Stratified sub-rays at that budget
+            // cost less and place the returns better (docs/sensor.md, "Footprint and returns").
+            if (meets_map(*regions.front(), witnesses)) {
+                stratified(aim, map_cells_, media, frame, out);
+                break;
+            }
         }
         // Split the marked leaves along the axes they disagree across: two children (or four),
         // the one holding the parent's jittered sub-ray reusing it.

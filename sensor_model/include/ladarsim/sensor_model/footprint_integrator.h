@@ -115,15 +115,21 @@ public:
 private:
     /// Refines the regions together until the returns they give, with the echoes already in
     /// `out`, are settled; their echoes are appended to `out`. `witnesses`: probes whose hits the
-    /// sub-rays of their cells must agree with. `try_edge`: when the first cells do not settle,
-    /// try one straight edge (straight_edge) before refining them.
+    /// sub-rays of their cells must agree with. `whole_footprint`: the one region is the whole
+    /// footprint; when its first cells do not settle, try one straight edge (straight_edge) and,
+    /// where they or the probes meet a recorded map, trace stratified sub-rays instead of refining.
     void refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses, bool media,
-                std::uint64_t frame, BeamEchoes& out, bool try_edge = false) const;
+                std::uint64_t frame, BeamEchoes& out, bool whole_footprint = false) const;
+    /// Whether a region's sub-rays, or the probes inside the footprint, met the recorded map.
+    bool meets_map(const Region& region, std::span<const Probe* const> witnesses) const;
     /// Traces the sub-rays of the regions not traced yet.
     void trace_samples(const BeamAim& aim, std::span<Region* const> regions, bool media, std::uint64_t frame, BeamEchoes& out) const;
     /// Whether the returns are settled; if not, marks the sub-rays to split. `echoes` is scratch.
     bool settled(std::span<Region* const> regions, std::span<const Probe* const> witnesses,
                  std::vector<SurfaceEcho>& echoes, const std::vector<BeamSurface>& volumes) const;
+    /// Traces one sub-ray in each of the stratified cells of `cells` (jittered when the render is),
+    /// appending their echoes.
+    void stratified(const BeamAim& aim, const Footprint& cells, bool media, std::uint64_t frame, BeamEchoes& out) const;
     /// Traces fixed sub-rays (brute force), appending their echoes.
     void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, BeamEchoes& out) const;
     enum class Patch { empty, plane, mixed };
@@ -153,6 +159,7 @@ private:
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;
+    Footprint map_cells_;  ///< stratified cells for a footprint that meets a recorded map
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
