@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/physical_constants.h"
@@ -336,7 +337,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     out.volume.clear();
     out.rays = 0;
     if (!adaptive_) {
-        stratified(aim, footprint_, traced_.has_volumes(), frame, out);
+        stratified(aim, footprint_, traced_.has_volumes(), frame, out, 0, std::nullopt, 1.0);
         return;
     }
 
@@ -425,7 +426,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed)) {
             rest_region.reset(footprint_, footprint_.square(), targets, rest, kComplementSamples);
             Region* const second[] = {&rest_region};
-            refine(aim, second, witnesses, media, frame, out);
+            refine(aim, second, witnesses, media, frame, out, Unsettled::map);
         }
         return;
     }
@@ -434,7 +435,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         rest_region.reset(footprint_, footprint_.square(), std::nullopt, 1.0, 0);
         rest_region.base = kOutlineBase;
         Region* const whole[] = {&rest_region};
-        refine(aim, whole, witnesses, media, frame, out);
+        refine(aim, whole, witnesses, media, frame, out, Unsettled::map);
         return;
     }
     const Patch patch = plane_patch(aim, probes, std::nullopt, 1.0, out);
@@ -449,7 +450,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     if (patch == Patch::mixed) {
         rest_region.reset(footprint_, footprint_.square(), std::nullopt, 1.0, 0);
         Region* const whole[] = {&rest_region};
-        refine(aim, whole, witnesses, media, frame, out, true);
+        refine(aim, whole, witnesses, media, frame, out, Unsettled::edge_or_map);
     }
 }
 
@@ -461,8 +462,8 @@ bool FootprintIntegrator::meets_map(const Region& region, std::span<const Probe*
            });
 }
 
-void FootprintIntegrator::stratified(const BeamAim& aim, const Footprint& cells, bool media, std::uint64_t frame,
-                                     BeamEchoes& out) const {
+void FootprintIntegrator::stratified(const BeamAim& aim, const Footprint& cells, bool media, std::uint64_t frame, BeamEchoes& out,
+                                     std::uint32_t first_draw, const std::optional<FootprintRect>& excluded, double share) const {
     thread_local std::vector<SubRay> sub_rays;
     thread_local std::vector<double> uniforms;
     sub_rays.resize(static_cast<std::size_t>(cells.samples()));
@@ -471,15 +472,22 @@ void FootprintIntegrator::stratified(const BeamAim& aim, const Footprint& cells,
     } else {
         // Two cells per block of four draws.
         uniforms.resize(2 * sub_rays.size());
-        RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, 0);
+        RandomSequence draws(scenario_.render.seed, RandomStream::footprint_jitter, frame, aim.cell, first_draw);
         for (double& u : uniforms) u = draws.uniform();
         cells.jittered(sub_rays, uniforms);
     }
-    trace(aim, sub_rays, media, frame, out);
+    if (excluded) {
+        // The part accounted elsewhere is dropped; the rest carry its share, as a region's cells do.
+        std::erase_if(sub_rays, [&](const SubRay& s) { return footprint_.contains(*excluded, s.offset_x_rad, s.offset_y_rad); });
+        double kept = 0.0;
+        for (const SubRay& s : sub_rays) kept += s.weight;
+        for (SubRay& s : sub_rays) s.weight *= share / kept;
+    }
+    trace(aim, sub_rays, media, frame, out, first_draw);
 }
 
 void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses,
-                                 bool media, std::uint64_t frame, BeamEchoes& out, bool whole_footprint) const {
+                                 bool media, std::uint64_t frame, BeamEchoes& out, Unsettled first_cells) const {
     const bool jitter = scenario_.render.jitter;
     auto place = [&](Region& r, Region::Node& n) {
         double ju = 0.5, jv = 0.5;
@@ -550,18 +558,19 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
         }
         scratch.assign(out.surface.begin(), out.surface.end());
         if (settled(regions, witnesses, scratch, out.volume)) break;
-        if (whole_footprint) {
+        if (first_cells != Unsettled::refine) {
             // Unsettled at the first cells: one straight edge settles it at once, when it holds.
-            whole_footprint = false;
+            const Unsettled shortcut = std::exchange(first_cells, Unsettled::refine);
             out.surface.resize(fixed_surface);
             out.volume = fixed_volume;
-            if (straight_edge(aim, witnesses, out, regions.front())) break;
+            Region& r = *regions.front();
+            if (shortcut == Unsettled::edge_or_map && straight_edge(aim, witnesses, out, &r)) break;
             // A recorded map's discs overlap and tilt at random, so its cells never agree:
             // refinement would pay its bookkeeping for every sub-ray up to its budget and still
             // judge energies only, not where in range they fall. Stratified sub-rays at that budget
             // cost less and place the returns better (docs/sensor.md, "Footprint and returns").
-            if (meets_map(*regions.front(), witnesses)) {
-                stratified(aim, map_cells_, media, frame, out);
+            if (meets_map(r, witnesses)) {
+                stratified(aim, map_cells_, media, frame, out, r.first_sample, r.excluded, r.share > 0.0 ? r.share : 1.0);
                 break;
             }
         }
@@ -932,7 +941,7 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
 }
 
 void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame,
-                                BeamEchoes& out) const {
+                                BeamEchoes& out, std::uint32_t first_draw) const {
     const auto& sensor = scenario_.sensor;
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
@@ -947,7 +956,8 @@ void FootprintIntegrator::trace(const BeamAim& aim, std::span<const SubRay> sub_
     traced_.trace(rays, hits);
     out.rays += static_cast<int>(sub_rays.size());
 
-    RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame, aim.cell, 0);
+    // As a region's sub-rays draw theirs: 64 a sub-ray from its number on.
+    RandomSequence volume_draws(scenario_.render.seed, RandomStream::volume_scatter, frame, aim.cell, std::uint64_t{64} * first_draw);
     for (std::size_t i = 0; i < sub_rays.size(); ++i) {
         const double weight = sub_rays[i].weight;
         double fog = 1.0;

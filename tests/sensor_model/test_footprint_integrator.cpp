@@ -320,8 +320,13 @@ namespace {
 /// half diagonal that closes the gaps), heights undulating by 0.3 m with 5 cm of roughness, each
 /// disc's normal tilted by up to 8 deg (plane fits of a rough surface) and its reflectance drawn
 /// in [0.1, 0.4]; seen from 60 m up, 4.3 deg down, so footprints graze it about 800 m out.
-Scenario rough_survey_scenario() {
+Scenario rough_survey_scenario(bool with_target = false) {
     Scenario s = closed_form_scenario();
+    if (with_target) {
+        // A 0.3 m plate (reflectance 0.3) 0.5 m over the ground on the middle beams' sight line.
+        s.scene.objects.push_back(object_at(1, plate(0.3, 0.3), scene::Trajectory::fixed(scene::Pose{{790.0, 0.0, 1.25},
+                                                                                                   Eigen::Quaterniond::Identity()})));
+    }
     set_raster(s.sensor, 32, 20, 0.5 * 32.0 / 150.0, 0.5);
     s.mount.position_world = {0.0, 0.0, 60.0};
     s.mount.gimbal_el_deg = -4.29;
@@ -398,4 +403,46 @@ TEST_CASE("grazing a recorded map, the adaptive footprint does as well as brute 
     CHECK(got.median_range_error_m <= 1.25 * brute_force.median_range_error_m);
     CHECK(got.beams_found >= 0.97);
     CHECK(rays_per_beam <= 1.1 * 256);
+}
+
+TEST_CASE("a small target over a recorded map: its echo as 4096 sub-rays weigh it, the map around it as brute force", "[footprint][map]") {
+    // The rest of a target's footprints meets the map too: stratified sub-rays outside the
+    // target's outline, carrying the rest's exact share.
+    Scenario reference_scenario = rough_survey_scenario(true), brute_scenario = rough_survey_scenario(true);
+    reference_scenario.render.footprint_samples = 4096;
+    brute_scenario.render.footprint_samples = 256;
+    ++brute_scenario.render.seed;
+    const Scenario adaptive_scenario = rough_survey_scenario(true);
+    FrameRenderer adaptive(adaptive_scenario), brute(brute_scenario), reference(reference_scenario);
+    const Frame want = reference.render(0), got_frame = adaptive.render(0);
+    const MapErrors got = map_errors(got_frame, want), brute_force = map_errors(brute.render(0), want);
+    auto target_energy = [](const Frame& f) {
+        double e = 0.0;
+        for (const Return& r : f.returns) e += r.object_id == 1 ? r.intensity : 0.0;
+        return e;
+    };
+    const double target_want = target_energy(want), target_got = target_energy(got_frame);
+    // Every return of the beams that hold the target: the map beside it must carry the rest of
+    // the beam, neither the target's share again nor less.
+    std::map<std::uint32_t, double> beam_want, beam_got;
+    for (const Return& r : want.returns)
+        if (r.object_id == 1) beam_want[std::uint32_t{r.row} << 16 | r.column] = 0.0;
+    for (const Return& r : want.returns)
+        if (auto it = beam_want.find(std::uint32_t{r.row} << 16 | r.column); it != beam_want.end()) it->second += r.intensity;
+    for (const Return& r : got_frame.returns)
+        if (beam_want.contains(std::uint32_t{r.row} << 16 | r.column)) beam_got[std::uint32_t{r.row} << 16 | r.column] += r.intensity;
+    double beams_want = 0.0, beams_error = 0.0;
+    for (const auto& [key, e] : beam_want) {
+        beams_want += e;
+        beams_error += std::abs(beam_got[key] - e);
+    }
+    INFO("target energy " << target_got << " against " << target_want << "; its beams' energy off by " << 100 * beams_error / beams_want
+         << " % (" << beam_want.size() << " beams); adaptive: count error " << 100 * got.count_error
+         << " %, median range error " << 1e3 * got.median_range_error_m << " mm; 256 sub-rays: " << 100 * brute_force.count_error
+         << " %, " << 1e3 * brute_force.median_range_error_m << " mm");
+    REQUIRE(target_want > 0.0);
+    CHECK(std::abs(target_got - target_want) <= 0.05 * target_want);
+    CHECK(beams_error <= 0.05 * beams_want);
+    CHECK(got.count_error <= brute_force.count_error + 0.01);
+    CHECK(got.median_range_error_m <= 1.25 * brute_force.median_range_error_m);
 }

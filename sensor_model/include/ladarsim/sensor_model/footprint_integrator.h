@@ -113,13 +113,15 @@ public:
     struct Region;
 
 private:
+    /// What a region's first cells try when they do not settle, before they are refined: nothing;
+    /// one straight edge (straight_edge, a whole footprint without media or targets) and then
+    /// stratified sub-rays where the cells or probes meet a recorded map; or only the latter.
+    enum class Unsettled { refine, edge_or_map, map };
     /// Refines the regions together until the returns they give, with the echoes already in
     /// `out`, are settled; their echoes are appended to `out`. `witnesses`: probes whose hits the
-    /// sub-rays of their cells must agree with. `whole_footprint`: the one region is the whole
-    /// footprint; when its first cells do not settle, try one straight edge (straight_edge) and,
-    /// where they or the probes meet a recorded map, trace stratified sub-rays instead of refining.
+    /// sub-rays of their cells must agree with. `first_cells`: the shortcut for one region.
     void refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses, bool media,
-                std::uint64_t frame, BeamEchoes& out, bool whole_footprint = false) const;
+                std::uint64_t frame, BeamEchoes& out, Unsettled first_cells = Unsettled::refine) const;
     /// Whether a region's sub-rays, or the probes inside the footprint, met the recorded map.
     bool meets_map(const Region& region, std::span<const Probe* const> witnesses) const;
     /// Traces the sub-rays of the regions not traced yet.
@@ -127,11 +129,14 @@ private:
     /// Whether the returns are settled; if not, marks the sub-rays to split. `echoes` is scratch.
     bool settled(std::span<Region* const> regions, std::span<const Probe* const> witnesses,
                  std::vector<SurfaceEcho>& echoes, const std::vector<BeamSurface>& volumes) const;
-    /// Traces one sub-ray in each of the stratified cells of `cells` (jittered when the render is),
-    /// appending their echoes.
-    void stratified(const BeamAim& aim, const Footprint& cells, bool media, std::uint64_t frame, BeamEchoes& out) const;
-    /// Traces fixed sub-rays (brute force), appending their echoes.
-    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, BeamEchoes& out) const;
+    /// Traces one sub-ray in each of the stratified cells of `cells` (jittered when the render is,
+    /// by draws from `first_draw` on), appending their echoes: outside `excluded` only, those then
+    /// carrying `share` of the beam.
+    void stratified(const BeamAim& aim, const Footprint& cells, bool media, std::uint64_t frame, BeamEchoes& out,
+                    std::uint32_t first_draw, const std::optional<FootprintRect>& excluded, double share) const;
+    /// Traces sub-rays, appending their echoes (media draws from 64 x `first_draw` on).
+    void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, BeamEchoes& out,
+               std::uint32_t first_draw) const;
     enum class Patch { empty, plane, mixed };
     /// The footprint outside `excluded` (share `weight`) as one plane, from the probes outside it.
     Patch plane_patch(const BeamAim& aim, std::span<const Probe> probes, const std::optional<FootprintRect>& excluded,
