@@ -31,7 +31,8 @@ constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's ce
 constexpr int kMaxSplits = 8;
 constexpr std::size_t kFootprintSamples = 256;  ///< a whole footprint's (a recorded map's grazing one)
 /// A target's outline takes at most 1 / tolerance^2 of these (as a sampled estimate's error falls
-/// with its samples), between 256 (tolerance 0.05 and above) and 1024 (0.025 and below). A small
+/// with its samples), between 256 (tolerance 0.05 and above) and 1024 (0.025 and below); so does
+/// a footprint over a recorded map, in stratified cells. A small
 /// target of many surfaces within one return (a quadcopter's arms, rotors and body) keeps the
 /// estimate's variance above a coarse tolerance through its inner edges: with one cap for every
 /// tolerance, each beam near a drone ran to 1024 whatever the tolerance asked.
@@ -284,7 +285,7 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
       aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
       footprint_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.render.footprint_samples,
                  scenario.render.footprint_truncation),
-      map_cells_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, static_cast<int>(kFootprintSamples),
+      map_cells_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, static_cast<int>(outline_samples_),
                  scenario.render.footprint_truncation) {
     small_object_rad_ = kSmallObjectFootprints * footprint_.max_offset_rad();
     if (!adaptive_) return;

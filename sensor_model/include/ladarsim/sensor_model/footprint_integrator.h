@@ -159,12 +159,12 @@ private:
     const BeamReceiver& receiver_;
     bool adaptive_;
     double tolerance_;
-    std::size_t outline_samples_;  ///< a target outline's sub-ray budget at this tolerance
+    std::size_t outline_samples_;  ///< a target outline's (and a map footprint's) sub-ray budget at this tolerance
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;
-    Footprint map_cells_;  ///< stratified cells for a footprint that meets a recorded map
+    Footprint map_cells_;  ///< stratified cells for a footprint that meets a recorded map (outline_samples_)
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
