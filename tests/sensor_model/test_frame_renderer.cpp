@@ -1,6 +1,7 @@
 // FrameRenderer end to end on hand-built scenes, against closed-form geometry and conservation.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -186,13 +187,24 @@ TEST_CASE("ground-truth boxes enclose the object's vertices at the frame's mid t
 
 TEST_CASE("frames are identical with one, two and eight threads", "[frame_renderer]") {
     Scenario s = closed_form_scenario();
-    // Every random process on: speckle, noise, jitter, false alarms, waveforms at the plate's edges.
+    // Every random process on: speckle, noise, jitter, false alarms, waveforms at the plate's edges,
+    // stratified footprints over a map.
     s.render.noise = true;
     s.sensor.receiver.range_folding = true;
     s.sensor.receiver.false_alarm_rate_hz = 1e5;  // about one false alarm per frame
     s.scene.objects.push_back(object_at(1, plate(50.0, 0.3), fixed_at(300.0, 0, 0)));
     s.scene.objects.push_back(
         object_at(2, plate(0.3, 0.6), sliding({250.0, -1.0, 0.2}, {0.0, 40.0, 0.0})));
+    // A patch of recorded map between them (tilted discs: its footprints take stratified sub-rays).
+    scene::BackgroundMap map;
+    for (int i = 0; i < 200; ++i) {
+        const double y = -0.8 + 0.1 * (i % 20), z = -0.5 + 0.1 * (i / 20);
+        map.points_world.emplace_back(270.0 + 0.3 * std::sin(7.0 * i), y, z);
+        map.normals.push_back(Eigen::Vector3f(-1.0f, 0.3f * float(std::sin(3.0 * i)), 0.3f * float(std::cos(5.0 * i))).normalized());
+        map.radii_m.push_back(0.07f);
+        map.reflectance.push_back(0.2f + 0.1f * float(i % 3));
+    }
+    s.scene.background = std::move(map);
     auto render_with = [&](int threads) {
         // An arena of its own, and permission for more threads than cores: eight workers even on
         // a two-core machine.
@@ -204,6 +216,7 @@ TEST_CASE("frames are identical with one, two and eight threads", "[frame_render
         });
     };
     const Frame one = render_with(1);
+    REQUIRE(std::any_of(one.returns.begin(), one.returns.end(), [](const Return& r) { return r.object_id == scene::kBackgroundObjectId; }));
     for (int threads : {2, 8}) {
         const Frame other = render_with(threads);
         INFO(threads << " threads");
