@@ -74,11 +74,12 @@ struct BenchCommand {
     static void print_hard_cases(const nlohmann::json& cases) {
         for (const nlohmann::json& c : cases) {
             for (const nlohmann::json& s : c["settings"]) {
+                const std::string setting = s.value("reference_with_another_seed", false) ? "reference, another seed"
+                                            : s["footprint_samples"] == 0
+                                                ? "adaptive " + std::to_string(s["footprint_tolerance"].get<double>()).substr(0, 5)
+                                                : std::to_string(s["footprint_samples"].get<int>()) + " fixed";
                 std::printf("%s, %s: count %+.1f %%, range error mean %.1f / median %.1f mm, %d missing beams, %.1f rays/beam, %.0f beams/s\n",
-                            c["case"].get<std::string>().c_str(),
-                            s.value("reference_with_another_seed", false) ? "reference, another seed"
-                            : s["footprint_samples"] == 0 ? ("adaptive " + std::to_string(s["footprint_tolerance"].get<double>()).substr(0, 5)).c_str()
-                                                          : (std::to_string(s["footprint_samples"].get<int>()) + " fixed").c_str(),
+                            c["case"].get<std::string>().c_str(), setting.c_str(),
                             s["count_error_pct"].get<double>(), s["range_error_mm"].get<double>(), s["median_range_error_mm"].get<double>(),
                             s["missing_beams"].get<int>(), s["rays_per_beam"].get<double>(), s["beams_per_s"].get<double>());
             }

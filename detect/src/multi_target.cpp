@@ -19,6 +19,17 @@ struct MultiTargetTracker::Track {
     int hits = 0;    ///< clusters so far
     int misses = 0;  ///< frames in a row without one
     Eigen::Vector3d predicted(double time_s) const { return centre + velocity * (time_s - seen_s); }
+    /// Its cluster of this frame (a new track's first).
+    void take(const Cluster& c, double time_s, double spread_rad, const Eigen::Vector3d& target_size_m) {
+        if (hits > 0 && time_s > seen_s) velocity = (c.box.centre - centre) / (time_s - seen_s);
+        centre = c.box.centre;
+        seen_s = time_s;
+        box = c.box;
+        sensor_box = sensor_aware_box(c.box, spread_rad, target_size_m);
+        points = c.points.size();
+        ++hits;
+        misses = 0;
+    }
 };
 
 MultiTargetTracker::MultiTargetTracker(const DetectorConfig& config, const SensorGeometry& sensor, const Points& background_map)
@@ -73,16 +84,8 @@ std::vector<TrackedObject> MultiTargetTracker::process(double time_s, const Poin
             ++track.misses;
             continue;
         }
-        const Cluster& c = candidates[static_cast<std::size_t>(candidate_of[t])];
         taken[static_cast<std::size_t>(candidate_of[t])] = true;
-        if (time_s > track.seen_s) track.velocity = (c.box.centre - track.centre) / (time_s - track.seen_s);
-        track.centre = c.box.centre;
-        track.seen_s = time_s;
-        track.box = c.box;
-        track.sensor_box = sensor_aware_box(c.box, spread_rad, config_.target_size_m);
-        track.points = c.points.size();
-        ++track.hits;
-        track.misses = 0;
+        track.take(candidates[static_cast<std::size_t>(candidate_of[t])], time_s, spread_rad, config_.target_size_m);
     }
     // Unconfirmed tracks end at their first miss, confirmed ones after kMaxMisses.
     std::erase_if(tracks_, [](const Track& t) {
@@ -92,12 +95,7 @@ std::vector<TrackedObject> MultiTargetTracker::process(double time_s, const Poin
         if (taken[c]) continue;
         Track t;
         t.id = next_track_++;
-        t.seen_s = time_s;
-        t.centre = candidates[c].box.centre;
-        t.box = candidates[c].box;
-        t.sensor_box = sensor_aware_box(candidates[c].box, spread_rad, config_.target_size_m);
-        t.points = candidates[c].points.size();
-        t.hits = 1;
+        t.take(candidates[c], time_s, spread_rad, config_.target_size_m);
         tracks_.push_back(t);
     }
 

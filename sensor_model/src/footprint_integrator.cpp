@@ -571,7 +571,7 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
             // judge energies only, not where in range they fall. Stratified sub-rays at that budget
             // cost less and place the returns better (docs/sensor.md, "Footprint and returns").
             if (meets_map(r, witnesses)) {
-                stratified(aim, map_cells_, media, frame, out, r.first_sample, r.excluded, r.share > 0.0 ? r.share : 1.0);
+                stratified(aim, map_cells_, media, frame, out, r.first_sample, r.excluded, r.share);
                 break;
             }
         }
