@@ -93,13 +93,13 @@ struct TracedScene::Impl {
     }
 
     // The sub-rays of one beam leave one point in nearly one direction: a coherent stream.
-    void intersect(std::span<const Ray> rays, std::vector<RTCRayHit>& buffer) const {
+    void intersect(std::span<const Ray> rays, std::vector<RTCRayHit>& buffer, RTCScene scene) const {
         buffer.resize(rays.size());
         for (std::size_t i = 0; i < rays.size(); ++i) to_embree(rays[i], buffer[i]);
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        rtcIntersect1M(top.get(), &context, buffer.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
+        rtcIntersect1M(scene, &context, buffer.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
     }
 
     static void on_error(void* user, RTCError, const char* message) {
@@ -334,9 +334,11 @@ struct TracedScene::Impl {
 
     std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-        // Every hit is inside an instance: the static scene's, or a moving object's.
+        // Every hit of the top scene is inside an instance: the static scene's, or a moving
+        // object's; a hit of the static scene traced alone is in none.
         const unsigned instance = rh.hit.instID[0];
-        const TopGeometry& entry = instance == fixed_instance ? fixed_geometries[rh.hit.geomID] : geometries[instance];
+        const TopGeometry& entry = instance == fixed_instance || instance == RTC_INVALID_GEOMETRY_ID ? fixed_geometries[rh.hit.geomID]
+                                                                                                      : geometries[instance];
         // The ray's origin in the relative frame, exactly (the float copy given to Embree is not).
         const Eigen::Vector3d o = ray.origin_world - origin_world;
         const Eigen::Vector3d& d = ray.direction;
@@ -468,7 +470,19 @@ void TracedScene::trace(std::span<const Ray> rays, std::span<std::optional<Hit>>
     // Reused per thread: a frame traces one small stream per beam, and allocating each time costs
     // as much as tracing it.
     thread_local std::vector<RTCRayHit> buffer;
-    impl_->intersect(rays, buffer);
+    impl_->intersect(rays, buffer, impl_->top.get());
+    for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], buffer[i]);
+}
+
+void TracedScene::trace_static(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const {
+    if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace_static: rays and results differ in size");
+    if (impl_->fixed_geometries.empty()) {
+        std::fill(results.begin(), results.end(), std::nullopt);
+        return;
+    }
+    impl_->log(rays);
+    thread_local std::vector<RTCRayHit> buffer;
+    impl_->intersect(rays, buffer, impl_->fixed.get());
     for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], buffer[i]);
 }
 
@@ -476,7 +490,7 @@ void TracedScene::record_rays(std::vector<std::vector<Ray>>* log) { impl_->ray_l
 
 std::size_t TracedScene::intersect_only(std::span<const Ray> rays) const {
     thread_local std::vector<RTCRayHit> buffer;
-    impl_->intersect(rays, buffer);
+    impl_->intersect(rays, buffer, impl_->top.get());
     std::size_t hits = 0;
     for (const RTCRayHit& rh : buffer) hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     return hits;

@@ -8,6 +8,7 @@
 #include "ladarsim/sensor_model/counter_random.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
+#include "ladarsim/sensor_model/sub_ray_lattice.h"
 #include "ladarsim/sensor_model/volume_echoes.h"
 
 namespace ladarsim::sensor_model {
@@ -571,7 +572,9 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
             // judge energies only, not where in range they fall. Stratified sub-rays at that budget
             // cost less and place the returns better (docs/sensor.md, "Footprint and returns").
             if (meets_map(r, witnesses)) {
-                stratified(aim, map_cells_, media, frame, out, r.first_sample, r.excluded, r.share);
+                // Where footprints overlap, their neighbours' sub-rays are this one's too.
+                if (lattice_ && !media) lattice_->gather(aim.world_from_beam, aim.cell, r.excluded, r.share, out);
+                else stratified(aim, map_cells_, media, frame, out, r.first_sample, r.excluded, r.share);
                 break;
             }
         }

@@ -47,6 +47,15 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         }
     }
     if (integrator_.adaptive()) find_neighbours();
+    const bool map = scenario.scene.background && !scenario.scene.background->points_world.empty();
+    if (integrator_.adaptive() && map &&
+        SubRayLattice::overlap(integrator_.footprint(), integrator_.ellipticity(), raster_) >= SubRayLattice::kMinOverlap) {
+        lattice_ = std::make_unique<SubRayLattice>(
+            traced_, raster_, integrator_.footprint(), integrator_.ellipticity(), static_cast<std::size_t>(SubRayLattice::kBudgetOverStratified * static_cast<double>(integrator_.map_samples())), scenario.mount.position_world,
+            world_from_sensor_rotation_, scenario.sensor.receiver.max_range_m, scenario.render.seed, scenario.render.jitter,
+            [this](const raytrace::Hit& h) { return integrator_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0); });
+        integrator_.share_sub_rays(lattice_.get());
+    }
 }
 
 void FrameRenderer::find_neighbours() {
@@ -296,6 +305,7 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
+    if (lattice_) lattice_->start_frame(pointing, index);
     // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
     // stretches keep both cores busy.
     constexpr int kStepsPerTask = 16;

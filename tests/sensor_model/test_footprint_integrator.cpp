@@ -352,31 +352,48 @@ Scenario rough_survey_scenario(bool with_target = false) {
 
 namespace {
 
-/// First-return range errors and the return count of `got` against `want`, beam by beam.
+/// First-return range errors and the return count of renders against `want`, beam by beam,
+/// averaged over renders with eight seeds: one seed's count of these 640 beams' returns scatters by
+/// about 2.5 % (standard deviation), as much as the differences between ways of sampling that
+/// these tests judge.
 struct MapErrors {
-    double count_error = 0.0;  ///< |returns - reference returns| / reference returns
-    double median_range_error_m = 0.0;
-    double beams_found = 0.0;  ///< share of the reference's beams with a first return that report one
+    double count_error = 0.0;  ///< |mean returns - reference returns| / reference returns
+    double median_range_error_m = 0.0;  ///< mean over the renders
+    double beams_found = 0.0;  ///< share of the reference's beams with a first return that report one (the least)
+    double rays_per_beam = 0.0;
 };
 
-MapErrors map_errors(const Frame& got, const Frame& want) {
+MapErrors map_errors(Scenario scenario, const Frame& want) {
+    constexpr int kSeeds = 8;
     std::map<std::uint32_t, double> first_want;
     for (const Return& r : want.returns)
         if (r.return_index == 0) first_want[std::uint32_t{r.row} << 16 | r.column] = r.range_m;
-    std::vector<double> errors;
-    for (const Return& r : got.returns) {
-        if (r.return_index != 0) continue;
-        const auto it = first_want.find(std::uint32_t{r.row} << 16 | r.column);
-        if (it != first_want.end()) errors.push_back(std::abs(r.range_m - it->second));
-    }
     MapErrors e;
-    e.count_error = std::abs(double(got.returns.size()) - double(want.returns.size())) / double(want.returns.size());
-    e.beams_found = double(errors.size()) / double(first_want.size());
-    if (errors.empty()) return e;
-    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
-    e.median_range_error_m = errors[errors.size() / 2];
+    e.beams_found = 1.0;
+    double returns = 0.0;
+    for (int k = 0; k < kSeeds; ++k) {
+        FrameRenderer renderer(scenario);
+        const Frame got = renderer.render(0);
+        ++scenario.render.seed;
+        std::vector<double> errors;
+        for (const Return& r : got.returns) {
+            if (r.return_index != 0) continue;
+            const auto it = first_want.find(std::uint32_t{r.row} << 16 | r.column);
+            if (it != first_want.end()) errors.push_back(std::abs(r.range_m - it->second));
+        }
+        returns += double(got.returns.size()) / kSeeds;
+        e.rays_per_beam += double(renderer.rays_last_frame()) / renderer.raster().beam_count() / kSeeds;
+        e.beams_found = std::min(e.beams_found, double(errors.size()) / double(first_want.size()));
+        if (errors.empty()) continue;
+        std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+        e.median_range_error_m += errors[errors.size() / 2] / kSeeds;
+    }
+    e.count_error = std::abs(returns - double(want.returns.size())) / double(want.returns.size());
     return e;
 }
+
+/// Sub-rays a footprint over a recorded map takes at the default tolerance (the lattice's).
+int lattice_budget() { return static_cast<int>(SubRayLattice::kBudgetOverStratified * 256); }
 
 }  // namespace
 
@@ -384,38 +401,40 @@ TEST_CASE("grazing a recorded map, the adaptive footprint does as well as brute 
     // The discs of a map overlap and tilt at random, so neighbouring cells never agree, and the
     // refinement, judging energies only, reached its 256 sub-rays with returns worse placed than
     // 256 stratified ones (here +14.5 % returns and a median first-return error of 194 mm, against
-    // +9.5 % and 51 mm; over Autzen, the bench's hard case, 38 mm against 8 mm). Both against
-    // 4096 sub-rays; brute force with another seed, so that its draws are not the adaptive's.
+    // +9.5 % and 51 mm; over Autzen, the bench's hard case, 38 mm against 8 mm). Such footprints
+    // now take sub-rays of a lattice shared by the overlapping footprints of the frame's beams
+    // (SubRayLattice), as many a footprint as brute force takes here, for a third of the rays: its
+    // own stratified sub-rays placed first returns 48 mm from the reference's against brute
+    // force's 38 mm. All against 4096 sub-rays; brute force with other seeds.
     Scenario reference_scenario = rough_survey_scenario(), brute_scenario = rough_survey_scenario();
     reference_scenario.render.footprint_samples = 4096;
-    brute_scenario.render.footprint_samples = 256;
-    ++brute_scenario.render.seed;
-    const Scenario adaptive_scenario = rough_survey_scenario();
-    FrameRenderer adaptive(adaptive_scenario), brute(brute_scenario), reference(reference_scenario);
+    brute_scenario.render.footprint_samples = lattice_budget();
+    brute_scenario.render.seed += 100;
+    FrameRenderer reference(reference_scenario);
     const Frame want = reference.render(0);
     REQUIRE(want.returns.size() > 500);
-    const MapErrors got = map_errors(adaptive.render(0), want), brute_force = map_errors(brute.render(0), want);
-    const double rays_per_beam = double(adaptive.rays_last_frame()) / adaptive.raster().beam_count();
+    const MapErrors got = map_errors(rough_survey_scenario(), want), brute_force = map_errors(brute_scenario, want);
+    const double rays_per_beam = got.rays_per_beam;
     INFO("adaptive: count error " << 100 * got.count_error << " %, median range error " << 1e3 * got.median_range_error_m << " mm, "
-         << rays_per_beam << " rays/beam; 256 sub-rays: " << 100 * brute_force.count_error << " %, "
+         << rays_per_beam << " rays/beam; " << lattice_budget() << " sub-rays: " << 100 * brute_force.count_error << " %, "
          << 1e3 * brute_force.median_range_error_m << " mm");
     CHECK(got.count_error <= brute_force.count_error + 0.01);
     CHECK(got.median_range_error_m <= 1.25 * brute_force.median_range_error_m);
     CHECK(got.beams_found >= 0.97);
-    CHECK(rays_per_beam <= 1.1 * 256);
+    CHECK(rays_per_beam <= 0.5 * lattice_budget());
 }
 
 TEST_CASE("a small target over a recorded map: its echo as 4096 sub-rays weigh it, the map around it as brute force", "[footprint][map]") {
-    // The rest of a target's footprints meets the map too: stratified sub-rays outside the
+    // The rest of a target's footprints meets the map too: the lattice's sub-rays outside the
     // target's outline, carrying the rest's exact share.
     Scenario reference_scenario = rough_survey_scenario(true), brute_scenario = rough_survey_scenario(true);
     reference_scenario.render.footprint_samples = 4096;
-    brute_scenario.render.footprint_samples = 256;
-    ++brute_scenario.render.seed;
+    brute_scenario.render.footprint_samples = lattice_budget();
+    brute_scenario.render.seed += 100;
     const Scenario adaptive_scenario = rough_survey_scenario(true);
-    FrameRenderer adaptive(adaptive_scenario), brute(brute_scenario), reference(reference_scenario);
+    FrameRenderer adaptive(adaptive_scenario), reference(reference_scenario);
     const Frame want = reference.render(0), got_frame = adaptive.render(0);
-    const MapErrors got = map_errors(got_frame, want), brute_force = map_errors(brute.render(0), want);
+    const MapErrors got = map_errors(adaptive_scenario, want), brute_force = map_errors(brute_scenario, want);
     auto target_energy = [](const Frame& f) {
         double e = 0.0;
         for (const Return& r : f.returns) e += r.object_id == 1 ? r.intensity : 0.0;
@@ -438,7 +457,7 @@ TEST_CASE("a small target over a recorded map: its echo as 4096 sub-rays weigh i
     }
     INFO("target energy " << target_got << " against " << target_want << "; its beams' energy off by " << 100 * beams_error / beams_want
          << " % (" << beam_want.size() << " beams); adaptive: count error " << 100 * got.count_error
-         << " %, median range error " << 1e3 * got.median_range_error_m << " mm; 256 sub-rays: " << 100 * brute_force.count_error
+         << " %, median range error " << 1e3 * got.median_range_error_m << " mm; " << lattice_budget() << " sub-rays: " << 100 * brute_force.count_error
          << " %, " << 1e3 * brute_force.median_range_error_m << " mm");
     REQUIRE(target_want > 0.0);
     CHECK(std::abs(target_got - target_want) <= 0.05 * target_want);

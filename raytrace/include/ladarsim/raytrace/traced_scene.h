@@ -47,6 +47,9 @@ public:
     std::optional<Hit> trace(const Ray& ray) const;
     /// Traces many rays at once (Embree streams); results[i] belongs to rays[i].
     void trace(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const;
+    /// The same against the static geometry only (static meshes and the background map), whatever
+    /// the time window: for rays that stand for many beams fired at other times.
+    void trace_static(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const;
 
     /// Where the ray runs inside volume media, up to its max_range_m, in order of entry. Volumes are
     /// placed where their trajectory puts them at time 0 (clouds drift little over a scan). Meshes

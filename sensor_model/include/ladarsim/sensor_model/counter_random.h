@@ -14,6 +14,8 @@ enum class RandomStream : std::uint32_t {
     waveform_noise = 4,   ///< noise samples of built waveforms
     false_alarms = 5,
     volume_scatter = 6,   ///< free paths inside fog and cloud
+    lattice_jitter = 7,   ///< a frame's shared sub-rays (SubRayLattice), keyed by their place in it
+    lattice_choice = 8,   ///< which of them a beam takes
 };
 
 /// Four independent uniform numbers in (0, 1] for one (stream, frame, beam, sample).

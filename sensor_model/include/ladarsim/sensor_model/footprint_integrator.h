@@ -75,6 +75,8 @@ struct Probe {
 };
 
 /// What one beam met, before the receiver.
+class SubRayLattice;
+
 struct BeamEchoes {
     std::vector<SurfaceEcho> surface;
     std::vector<BeamSurface> volume;
@@ -99,12 +101,23 @@ public:
 
     bool adaptive() const { return adaptive_; }
     const Footprint& footprint() const { return footprint_; }
+    /// The beam's elevation divergence over its azimuth divergence.
+    double ellipticity() const { return ellipticity_; }
     /// Footprint coordinates of a direction given in beam coordinates (x along the beam).
     Eigen::Vector2d offset_of(const Eigen::Vector3d& in_beam) const;
     /// Beam coordinates of a footprint offset.
     Eigen::Vector3d in_beam(double x_rad, double y_rad) const;
     /// The beam's irradiance at a footprint offset, relative to its axis.
     double irradiance(double x_rad, double y_rad) const;
+
+    /// Where a footprint over a recorded map takes brute force (without media), it takes the
+    /// lattice's shared sub-rays instead of tracing its own (null: its own). Set before rendering.
+    void share_sub_rays(const SubRayLattice* lattice) { lattice_ = lattice; }
+    /// Sub-rays a footprint over a recorded map (or a target's outline) takes at this tolerance.
+    std::size_t map_samples() const { return outline_samples_; }
+    /// Echo energy of a sub-ray carrying `weight` of the beam that meets a surface (fog: the two-way
+    /// transmission of media on the way).
+    double echo_energy_j(double weight, double reflectance, double cos_incidence, double range_m, double fog) const;
 
     /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
     void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
@@ -150,7 +163,6 @@ private:
     /// a corner, a curved edge, more surfaces.
     bool straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
                        const Region* sampled = nullptr) const;
-    double echo_energy_j(double weight, double reflectance, double cos_incidence, double range_m, double fog) const;
     /// Echo energy at which a pulse stretched by a range spread of `spread_m` peaks at the threshold.
     double threshold_energy_j(double spread_m) const;
 
@@ -168,6 +180,7 @@ private:
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
+    const SubRayLattice* lattice_ = nullptr;
 };
 
 }  // namespace ladarsim::sensor_model

@@ -11,6 +11,7 @@
 #include "ladarsim/sensor_model/scan_pattern.h"
 #include "ladarsim/sensor_model/gimbal.h"
 #include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/sub_ray_lattice.h"
 
 namespace ladarsim::sensor_model {
 
@@ -68,6 +69,8 @@ private:
     const ScanPattern& raster_;
     BeamReceiver receiver_;
     FootprintIntegrator integrator_;
+    /// Sub-rays shared by overlapping footprints over a recorded map (null where they do not pay).
+    std::unique_ptr<SubRayLattice> lattice_;
     std::vector<GimbalPointing> pointing_by_frame_;
     std::vector<Neighbour> neighbours_;
     /// By (row, step): each beam's offset rotations, AngleAxis(az_offset, z) and
