@@ -173,7 +173,8 @@ void SubRayLattice::gather(const Eigen::Matrix3d& world_from_beam, std::uint32_t
     const double w = footprint_.waist_rad();
     const double inverse_w2 = 2.0 / (w * w);
     const double cos_el0 = std::cos(el0);
-    thread_local std::vector<double> across;
+    thread_local std::vector<double> across_here;
+    std::vector<double>& across = across_here;
     across.resize(static_cast<std::size_t>(c_hi - c_lo + 1));
     for (int column = c_lo; column <= c_hi; ++column) {
         const double x = (az_lo_ + (column + 0.5) * step_az_ - az0) * cos_el0;
@@ -181,7 +182,8 @@ void SubRayLattice::gather(const Eigen::Matrix3d& world_from_beam, std::uint32_t
     }
     const double r2 = r_max * r_max;
     const double u = uniform4(seed_, RandomStream::lattice_choice, frame_, cell, 0)[0];
-    thread_local std::vector<std::pair<std::size_t, double>> taken;  ///< sub-ray, irradiance at its cell's centre
+    thread_local std::vector<std::pair<std::size_t, double>> taken_here;
+    std::vector<std::pair<std::size_t, double>>& taken = taken_here;  ///< sub-ray, irradiance at its cell's centre
     taken.clear();
     double sum = 0.0, next = u;
     for (int row = r_lo; row <= r_hi; ++row) {
@@ -193,8 +195,9 @@ void SubRayLattice::gather(const Eigen::Matrix3d& world_from_beam, std::uint32_t
         const int first = std::max(c_lo, static_cast<int>(std::ceil((az0 - half - az_lo_) / step_az_ - 0.5)));
         const int last = std::min(c_hi, static_cast<int>(std::floor((az0 + half - az_lo_) / step_az_ - 0.5)));
         const std::size_t row_start = static_cast<std::size_t>(row) * static_cast<std::size_t>(columns_);
+        const double* row_across = across.data() - c_lo;
         for (int column = first; column <= last; ++column) {
-            const double irradiance = across[static_cast<std::size_t>(column - c_lo)] * up;
+            const double irradiance = row_across[column] * up;
             sum += irradiance;
             if (sum < next) continue;
             next += 1.0;
