@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -135,6 +136,9 @@ private:
     /// sub-rays of their cells must agree with. `first_cells`: the shortcut for one region.
     void refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses, bool media,
                 std::uint64_t frame, BeamEchoes& out, Unsettled first_cells = Unsettled::refine) const;
+    /// Appends the footprint offsets of the points of target `b` (of its seed candidates) nearest the
+    /// beam's axis, those inside the truncation.
+    void seed_offsets(const raytrace::ObjectBounds& b, const Eigen::Matrix3d& beam_from_world, std::vector<Eigen::Vector2d>& out) const;
     /// Whether a region's sub-rays, or the probes inside the footprint, met the recorded map.
     bool meets_map(const Region& region, std::span<const Probe* const> witnesses) const;
     /// Traces the sub-rays of the regions not traced yet.
@@ -181,6 +185,8 @@ private:
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
     const SubRayLattice* lattice_ = nullptr;
+    /// By object id: centroids of facets of its mesh (model coordinates) tried as seeds (see integrate).
+    std::unordered_map<std::uint32_t, std::vector<Eigen::Vector3d>> seed_points_;
 };
 
 }  // namespace ladarsim::sensor_model
