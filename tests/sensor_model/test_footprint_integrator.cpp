@@ -41,6 +41,14 @@ double plate_share(const Sensor& c, double half_m, double distance_m, double rol
     return axis(u) * axis(v) / captured;
 }
 
+/// Detection threshold of a beam's unstretched pulse, in primary photo-electrons.
+double threshold_photoelectrons(const Scenario& s) {
+    const BeamReceiver receiver(s.sensor, s.atmosphere, false);
+    const auto& apd = receiver.apd();
+    return apd.threshold_a() / (apd.amps_per_watt() * receiver.waveform().pulse().peak_per_joule()) *
+           s.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
+}
+
 struct PlateRun {
     int returns = 0;
     int expected_detectable = 0;  ///< beams whose closed-form energy is twice the threshold's
@@ -61,10 +69,7 @@ PlateRun plate_run(int samples, double tolerance, double distance_m, double roll
                                                                              scene::orientation_from_ypr_deg(0, 0, roll_deg)})));
     FrameRenderer renderer(s);
     const Frame f = renderer.render(0);
-    const BeamReceiver receiver(s.sensor, s.atmosphere, false);
-    const auto& apd = receiver.apd();
-    const double threshold_pe = apd.threshold_a() / (apd.amps_per_watt() * receiver.waveform().pulse().peak_per_joule()) *
-                                s.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
+    const double threshold_pe = threshold_photoelectrons(s);
     const double full = extended_target_photoelectrons(s.sensor, 1.0, 1.0, distance_m);
     const double r_max = s.render.footprint_truncation * 0.5 * s.sensor.transmitter.divergence_mrad * 1e-3;
 
@@ -235,10 +240,7 @@ TEST_CASE("straight edges of an extended object: no beam missing, every energy w
         return energy;
     };
     const auto adaptive = render(0), reference = render(4096);
-    const BeamReceiver receiver(s.sensor, s.atmosphere, false);
-    const auto& apd = receiver.apd();
-    const double threshold_pe = apd.threshold_a() / (apd.amps_per_watt() * receiver.waveform().pulse().peak_per_joule()) *
-                                s.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
+    const double threshold_pe = threshold_photoelectrons(s);
     FrameRenderer geometry(s);
     int edge_beams = 0;
     for (int row = 0; row < geometry.raster().rows(); ++row) {
@@ -495,10 +497,7 @@ TEST_CASE("sparse targets, one alone and one behind a flock: the returns 4096 su
         return energy;
     };
     const auto adaptive = render(0), reference = render(4096);
-    const BeamReceiver receiver(s.sensor, s.atmosphere, false);
-    const auto& apd = receiver.apd();
-    const double threshold_pe = apd.threshold_a() / (apd.amps_per_watt() * receiver.waveform().pulse().peak_per_joule()) *
-                                s.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
+    const double threshold_pe = threshold_photoelectrons(s);
     int strong = 0, missing = 0;
     std::set<std::uint32_t> seen;
     for (const auto& [key, e] : reference) {
