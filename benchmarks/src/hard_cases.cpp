@@ -259,6 +259,35 @@ HardCase drone_at_footprint_edge(const Scenario& base) {
     return c;
 }
 
+/// A quadcopter 450 m out with three birds 17 m in front of it and a fourth beside it, all flying,
+/// seen 3.4 deg up (dataset 2's flock): sparse targets sharing footprints; the drone's returns judged.
+HardCase drone_behind_birds() {
+    HardCase c;
+    c.name = "drone behind birds, 450 m";
+    c.scenario = plain_scenario(32);
+    c.frames = {0, 1, 2};
+    c.scenario.render.frames = 3;
+    c.scenario.mount.gimbal_el_deg = std::atan2(27.0, 450.0) / kDeg;
+    auto flying = [](std::uint32_t id, scene::ObjectClass object_class, scene::Model model, const Eigen::Vector3d& at,
+                     const Eigen::Vector3d& velocity_mps) {
+        scene::SceneObject o;
+        o.id = id;
+        o.object_class = object_class;
+        o.model = std::make_shared<const scene::Model>(std::move(model));
+        o.trajectory = scene::Trajectory::keyframes({{0.0, {at, Eigen::Quaterniond::Identity()}},
+                                                     {10.0, {at + 10.0 * velocity_mps, Eigen::Quaterniond::Identity()}}},
+                                                    scene::Interpolation::linear);
+        return o;
+    };
+    c.scenario.scene.objects.push_back(flying(1, scene::ObjectClass::drone, scene::make_quadcopter(), {450.0, 0.0, 27.0}, {0.0, 0.5, 0.0}));
+    const Eigen::Vector3d birds[] = {{433.0, 0.25, 26.1}, {433.0, -0.2, 25.85}, {433.0, 0.1, 25.65}, {450.0, 0.0, 28.2}};
+    std::uint32_t id = 20;
+    for (const Eigen::Vector3d& at : birds)
+        c.scenario.scene.objects.push_back(flying(id++, scene::ObjectClass::bird, scene::make_bird(0.45), at, {-5.0, 0.0, 0.2}));
+    c.object_id = 1;
+    return c;
+}
+
 struct Setting {
     int samples;
     double tolerance;
@@ -316,6 +345,7 @@ json hard_cases(const Scenario& scenario, const BenchOptions& options, const std
     if (auto map = recorded_map(options)) cases.push_back(std::move(*map));
     cases.push_back(cloud_edge());
     cases.push_back(drone_at_footprint_edge(scenario));
+    cases.push_back(drone_behind_birds());
     json result = json::array();
     for (const HardCase& c : cases) {
         if (!only.empty() && c.name.find(only) == std::string::npos) continue;
