@@ -478,7 +478,8 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         const std::optional<FootprintRect> seen = footprint_.clip(outline);
         if (!seen) continue;
         seed_offsets(b, beam_from_world, seeds_at);
-        // Several at once (rare): one rectangle around them all.
+        // Several at once (a flock, a drone among birds): one rectangle around them all, in which
+        // the seeds below keep a sparse one from being missed.
         targets = targets ? FootprintRect{std::min(targets->x_lo, seen->x_lo), std::max(targets->x_hi, seen->x_hi),
                                           std::min(targets->y_lo, seen->y_lo), std::max(targets->y_hi, seen->y_hi)}
                           : *seen;
@@ -684,7 +685,7 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
             if (shortcut == Unsettled::edge_or_map && straight_edge(aim, witnesses, out, &r)) break;
             // A recorded map's discs overlap and tilt at random, so its cells never agree:
             // refinement would pay its bookkeeping for every sub-ray up to its budget and still
-            // judge energies only, not where in range they fall. Stratified sub-rays at that budget
+            // judge energies only, not where in range they fall. Brute-force sub-rays at that budget
             // cost less and place the returns better (docs/sensor.md, "Footprint and returns").
             if (meets_map(r, witnesses)) {
                 // Where footprints overlap, their neighbours' sub-rays are this one's too.

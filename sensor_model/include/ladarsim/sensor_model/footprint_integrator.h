@@ -89,7 +89,8 @@ struct BeamEchoes {
 ///  - adaptive (footprint_samples = 0): probes (the beam's axis and its neighbours' axes) decide
 ///    whether the footprint lies on one plane, then integrated without rays; objects small enough
 ///    to hide between probes, or moving, are found by testing the beam's cone against their
-///    bounding spheres and sampled only inside the part of the footprint they can occupy; media are
+///    bounding spheres and sampled only inside the part of the footprint they can occupy (with
+///    seeds, rays at points of their surfaces, as witnesses there); media are
 ///    sampled only where the cone meets them. Where sampling is needed, cells of equal energy (2 x 2
 ///    to start, 4 x 4 in a target's outline) split, along the axis across which they disagree, where neighbouring sub-rays, or a
 ///    probe and the sub-ray of its cell, disagree (another object, another surface, nothing, another
@@ -129,7 +130,8 @@ public:
 private:
     /// What a region's first cells try when they do not settle, before they are refined: nothing;
     /// one straight edge (straight_edge, a whole footprint without media or targets) and then
-    /// stratified sub-rays where the cells or probes meet a recorded map; or only the latter.
+    /// brute-force sub-rays (the shared lattice's, where there is one) where the cells or probes meet
+    /// a recorded map; or only the latter.
     enum class Unsettled { refine, edge_or_map, map };
     /// Refines the regions together until the returns they give, with the echoes already in
     /// `out`, are settled; their echoes are appended to `out`. `witnesses`: probes whose hits the
