@@ -192,8 +192,8 @@ TEST_CASE("a black surface (reflectance 0) is a plane patch that returns nothing
     // two surfaces 0.2 m apart in the beams around it, whose pulses overlap in one waveform.
     Scenario s = closed_form_scenario();
     s.render.noise = true;
-    s.scene.objects.push_back(object_at(1, plate(800.0, 0.0), scene::Trajectory::fixed(scene::Pose{{100.0, 0.0, 0.0}, {}})));
-    s.scene.objects.push_back(object_at(2, plate(0.3, 0.5), scene::Trajectory::fixed(scene::Pose{{99.8, 0.0, 0.0}, {}})));
+    s.scene.objects.push_back(object_at(1, plate(800.0, 0.0), fixed_at(100.0, 0.0, 0.0)));
+    s.scene.objects.push_back(object_at(2, plate(0.3, 0.5), fixed_at(99.8, 0.0, 0.0)));
     FrameRenderer renderer(s);
     const Frame f = renderer.render(0);
     int plate_returns = 0;
