@@ -54,7 +54,8 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
             traced_, raster_, integrator_.footprint(), integrator_.ellipticity(), static_cast<std::size_t>(SubRayLattice::kBudgetOverStratified * static_cast<double>(integrator_.map_samples())), scenario.mount.position_world,
             world_from_sensor_rotation_, scenario.sensor.receiver.max_range_m, scenario.render.seed, scenario.render.jitter,
             [this](const raytrace::Hit& h) { return integrator_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0); });
-        integrator_.share_sub_rays(lattice_.get());
+        if (lattice_->usable()) integrator_.share_sub_rays(lattice_.get());
+        else lattice_.reset();
     }
 }
 

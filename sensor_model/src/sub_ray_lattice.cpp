@@ -73,6 +73,11 @@ SubRayLattice::SubRayLattice(const raytrace::TracedScene& traced, const ScanPatt
     rows_ = static_cast<int>(std::ceil((el_max + reach_el_ + step_el_ - el_lo_) / step_el_));
     tile_columns_ = (columns_ + kTile - 1) / kTile;
     tile_rows_ = (rows_ + kTile - 1) / kTile;
+    const double points = double(columns_) * double(rows_);
+    if (points > kMaxPoints) {
+        columns_ = rows_ = tile_columns_ = tile_rows_ = 0;  // not usable: beams keep their own sub-rays
+        return;
+    }
     points_.resize(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_));
     tile_state_ = std::make_unique<std::atomic<std::uint8_t>[]>(static_cast<std::size_t>(tile_columns_ * tile_rows_));
 }

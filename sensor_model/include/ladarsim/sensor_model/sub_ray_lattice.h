@@ -40,6 +40,9 @@ public:
     /// map's count is 3.4 % short where stratified sub-rays leave it 2.5 % short; at 1.5x, 2.2 %, with
     /// first-return range errors smaller than those of the stratified footprints (docs/sensor.md).
     static constexpr double kBudgetOverStratified = 1.5;
+    /// A lattice of more sub-rays than this (a wide field of dense, overlapping footprints at a
+    /// fine tolerance: over 2 GB) is not made; its beams keep their own sub-rays.
+    static constexpr double kMaxPoints = 2e7;
     /// How many beams' footprints hold a point of the field (on average).
     static double overlap(const Footprint& footprint, double ellipticity, const ScanPattern& raster);
 
@@ -60,6 +63,8 @@ public:
     void gather(const Eigen::Matrix3d& world_from_beam, std::uint32_t cell, const std::optional<FootprintRect>& excluded, double share,
                 BeamEchoes& out) const;
 
+    /// Whether the lattice was made (see kMaxPoints).
+    bool usable() const { return !points_.empty(); }
     /// Sub-rays of the lattice (all of them, traced or not) and the lattice's step in azimuth.
     std::size_t size() const { return points_.size(); }
     double step_az_rad() const { return step_az_; }
