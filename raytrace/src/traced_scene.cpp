@@ -102,6 +102,17 @@ struct TracedScene::Impl {
         rtcIntersect1M(scene, &context, buffer.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
     }
 
+    // Hit records of `rays` traced against `scene` (the top scene, or the static one alone).
+    void trace_in(RTCScene scene, std::span<const Ray> rays, std::span<std::optional<Hit>> results) {
+        if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace: rays and results differ in size");
+        log(rays);
+        // Reused per thread: a frame traces one small stream per beam, and allocating each time
+        // costs as much as tracing it.
+        thread_local std::vector<RTCRayHit> buffer;
+        intersect(rays, buffer, scene);
+        for (std::size_t i = 0; i < rays.size(); ++i) results[i] = to_hit(rays[i], buffer[i]);
+    }
+
     static void on_error(void* user, RTCError, const char* message) {
         auto* self = static_cast<Impl*>(user);
         const std::lock_guard lock(self->error_mutex);
@@ -465,25 +476,16 @@ std::optional<Hit> TracedScene::trace(const Ray& ray) const {
 }
 
 void TracedScene::trace(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const {
-    if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace: rays and results differ in size");
-    impl_->log(rays);
-    // Reused per thread: a frame traces one small stream per beam, and allocating each time costs
-    // as much as tracing it.
-    thread_local std::vector<RTCRayHit> buffer;
-    impl_->intersect(rays, buffer, impl_->top.get());
-    for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], buffer[i]);
+    impl_->trace_in(impl_->top.get(), rays, results);
 }
 
 void TracedScene::trace_static(std::span<const Ray> rays, std::span<std::optional<Hit>> results) const {
-    if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace_static: rays and results differ in size");
     if (impl_->fixed_geometries.empty()) {
+        if (results.size() != rays.size()) throw std::invalid_argument("TracedScene::trace_static: rays and results differ in size");
         std::fill(results.begin(), results.end(), std::nullopt);
         return;
     }
-    impl_->log(rays);
-    thread_local std::vector<RTCRayHit> buffer;
-    impl_->intersect(rays, buffer, impl_->fixed.get());
-    for (std::size_t i = 0; i < rays.size(); ++i) results[i] = impl_->to_hit(rays[i], buffer[i]);
+    impl_->trace_in(impl_->fixed.get(), rays, results);
 }
 
 void TracedScene::record_rays(std::vector<std::vector<Ray>>* log) { impl_->ray_log = log; }

@@ -60,8 +60,7 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
 }
 
 void FrameRenderer::find_neighbours() {
-    const Transmitter& transmitter = scenario_.sensor.transmitter;
-    const double ellipticity = transmitter.divergence_el_mrad / transmitter.divergence_mrad;
+    const double ellipticity = integrator_.ellipticity();
     const double column_pitch = raster_.pitch_az_rad();
     const double row_pitch = raster_.pitch_el_rad();
     const double r_max = integrator_.footprint().max_offset_rad();

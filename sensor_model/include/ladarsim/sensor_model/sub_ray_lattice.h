@@ -65,9 +65,8 @@ public:
 
     /// Whether the lattice was made (see kMaxPoints).
     bool usable() const { return !points_.empty(); }
-    /// Sub-rays of the lattice (all of them, traced or not) and the lattice's step in azimuth.
+    /// Sub-rays of the lattice, traced or not.
     std::size_t size() const { return points_.size(); }
-    double step_az_rad() const { return step_az_; }
 
 private:
     struct Point {
