@@ -52,6 +52,15 @@ constexpr std::size_t kSeedCandidates = 128;
 /// two, 16 with four, 14 with eight. (Candidates facing the ray only, the edge-on ones dropped,
 /// missed more: a bird's wing is a thin box whose edges the reference still sees.)
 constexpr std::size_t kSeedsPerTarget = 4;
+/// A lone target whose echo could reach this many times the threshold (its whole outline's share
+/// of the beam, at its brightest material facing the beam, at its nearest range) is sampled by a
+/// stratified grid of the outline budget at once instead of refined. Refined, such an outline ran to
+/// its budget anyway (89 % of them in the default scenario: a quadcopter's inner edges keep the
+/// estimate's variance up), paying a settling pass at every step and spending the budget on the
+/// first cells' edges: in the bench's default scenario the grid gives the drone's energy -0.4 %
+/// against -1.9 % refined, at 8 % more beams/s. Several targets together keep refinement: one
+/// rectangle around a drone among birds is mostly empty, and the seeds find the drone in it.
+constexpr double kBrightTargetThresholds = 3.0;
 /// Random-draw numbers of the cells: every (splits along x, splits along y, i, j) its own.
 constexpr std::uint32_t cells_along(int base, int splits) { return static_cast<std::uint32_t>(base) << splits; }
 constexpr std::uint32_t first_cell_number(int base, int splits_x, int splits_y) {
@@ -329,6 +338,7 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
                                   kOutlineSamplesMin, kOutlineSamplesMax)),
       ellipticity_(scenario.sensor.transmitter.divergence_el_mrad / scenario.sensor.transmitter.divergence_mrad),
       small_object_rad_(0.0),
+      grid_base_(static_cast<int>(std::sqrt(static_cast<double>(outline_samples_)))),
       aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
       footprint_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.render.footprint_samples,
                  scenario.render.footprint_truncation),
@@ -342,11 +352,12 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
         if (!object.model || object.model->is_volume() || object.model->mesh.triangles.empty()) continue;
         const scene::TriangleMesh& mesh = object.model->mesh;
         const std::size_t stride = (mesh.triangles.size() + kSeedCandidates - 1) / kSeedCandidates;
-        std::vector<Eigen::Vector3d>& points = seed_points_[object.id];
+        TargetShape& shape = target_shapes_[object.id];
         for (std::size_t t = 0; t < mesh.triangles.size(); t += stride) {
             const auto& tri = mesh.triangles[t];
-            points.push_back((mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).cast<double>() / 3.0);
+            shape.seed_points.push_back((mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).cast<double>() / 3.0);
         }
+        for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);
     }
     std::vector<SubRay> nodes(kQuadrature);
     footprint_.fixed(nodes);
@@ -393,13 +404,13 @@ double FootprintIntegrator::threshold_energy_j(double spread_m) const {
 
 void FootprintIntegrator::seed_offsets(const raytrace::ObjectBounds& b, const Eigen::Matrix3d& beam_from_world,
                                        std::vector<Eigen::Vector2d>& out) const {
-    const auto it = seed_points_.find(b.object_id);
-    if (it == seed_points_.end()) return;
+    const auto it = target_shapes_.find(b.object_id);
+    if (it == target_shapes_.end()) return;
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
     // Nearest the axis by the tangents of the offsets (as good as the angles this close to it).
     thread_local std::vector<std::pair<double, Eigen::Vector3d>> candidates;
     candidates.clear();
-    for (const Eigen::Vector3d& p : it->second) {
+    for (const Eigen::Vector3d& p : it->second.seed_points) {
         const Eigen::Vector3d c = beam_from_world * (b.world_from_model * p.homogeneous() - origin);
         if (!(c.x() > 0.0)) continue;
         const double ty = c.y() / c.x(), tz = c.z() / (c.x() * ellipticity_);
@@ -437,6 +448,8 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     bool media = false;
     std::optional<FootprintRect> targets;  ///< the outline of every small or moving object met
+    int targets_met = 0;
+    double brightest_j = 0.0;  ///< the largest echo any of them could send back
     thread_local std::vector<Eigen::Vector2d> seeds_at;  ///< points of each on its surface
     seeds_at.clear();
     for (const raytrace::ObjectBounds& b : objects) {
@@ -478,6 +491,13 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         const std::optional<FootprintRect> seen = footprint_.clip(outline);
         if (!seen) continue;
         seed_offsets(b, beam_from_world, seeds_at);
+        ++targets_met;
+        const auto shape = target_shapes_.find(b.object_id);
+        const double share = footprint_.cell_weight(footprint_.axis_cdf(seen->x_hi) - footprint_.axis_cdf(seen->x_lo),
+                                                    footprint_.axis_cdf(seen->y_hi) - footprint_.axis_cdf(seen->y_lo));
+        const double nearest_m = std::max(distance - b.radius_m, 1e-3);
+        brightest_j = std::max(brightest_j, echo_energy_j(share, shape != target_shapes_.end() ? shape->second.max_reflectance : 1.0,
+                                                          1.0, nearest_m, 1.0));
         // Several at once (a flock, a drone among birds): one rectangle around them all, in which
         // the seeds below keep a sparse one from being missed.
         targets = targets ? FootprintRect{std::min(targets->x_lo, seen->x_lo), std::max(targets->x_hi, seen->x_hi),
@@ -535,6 +555,10 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         target_region.outline = true;
         target_region.base = kOutlineBase;
         target_region.max_samples = outline_samples_;
+        if (targets_met == 1 && brightest_j >= kBrightTargetThresholds * threshold_energy_j(0.0)) {
+            target_region.base = grid_base_;
+            target_region.max_samples = static_cast<std::size_t>(grid_base_ * grid_base_);
+        }
         Region* const first[] = {&target_region};
         refine(aim, first, witnesses, media, frame, out);
         double sampled = 0.0;
@@ -674,6 +698,9 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
                 }
             }
         }
+        // Regions at their budget cannot split: what settled() would find changes nothing.
+        const bool spent = std::all_of(regions.begin(), regions.end(), [](const Region* r) { return r->nodes.size() + 4 > r->max_samples; });
+        if (spent && first_cells == Unsettled::refine) break;
         scratch.assign(out.surface.begin(), out.surface.end());
         if (settled(regions, witnesses, scratch, out.volume)) break;
         if (first_cells != Unsettled::refine) {

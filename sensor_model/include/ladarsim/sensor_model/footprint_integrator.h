@@ -187,8 +187,13 @@ private:
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
     const SubRayLattice* lattice_ = nullptr;
-    /// By object id: centroids of facets of its mesh (model coordinates) tried as seeds (see integrate).
-    std::unordered_map<std::uint32_t, std::vector<Eigen::Vector3d>> seed_points_;
+    /// What the integrator knows ahead of a mesh object met as a target.
+    struct TargetShape {
+        std::vector<Eigen::Vector3d> seed_points;  ///< facet centroids (model coordinates) tried as seeds
+        double max_reflectance = 0.0;              ///< of its materials: bounds its echo
+    };
+    std::unordered_map<std::uint32_t, TargetShape> target_shapes_;  ///< by object id
+    int grid_base_;  ///< cells along each axis of a bright lone target's grid (grid_base_^2 ~ outline_samples_)
 };
 
 }  // namespace ladarsim::sensor_model
