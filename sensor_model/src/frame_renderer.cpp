@@ -151,9 +151,10 @@ BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, const Eigen::Quater
 std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double frame_start_s) {
     const Eigen::Quaterniond gimbal = Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) *
                                       Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
-    for (int step = 0; step < raster_.columns(); ++step) {
+    const int columns = raster_.columns();
+    for (int step = 0; step < columns; ++step) {
         const RasterBeam beam = raster_.beam(row, step);
-        aims_[static_cast<std::size_t>(row * raster_.columns() + beam.column)] = aim(beam, step, gimbal, frame_start_s);
+        aims_[static_cast<std::size_t>(row * columns + beam.column)] = aim(beam, step, gimbal, frame_start_s);
     }
     if (!integrator_.adaptive()) return 0;
 
@@ -172,8 +173,8 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
         slots.push_back(slot);
     };
     // In firing order: neighbouring rays of the stream leave in nearly the same direction.
-    for (int step = 0; step < raster_.columns(); ++step) {
-        const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + raster_.beam(row, step).column);
+    for (int step = 0; step < columns; ++step) {
+        const std::size_t cell = static_cast<std::size_t>(row * columns + raster_.beam(row, step).column);
         const BeamAim& a = aims_[cell];
         add(a.world_from_beam.col(0), a.time_s, &axis_hit_[cell]);
         for (int k = 0; k < 4; ++k) {
@@ -199,18 +200,19 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
     thread_local std::vector<BeamSurface> surfaces;
     thread_local std::vector<DetectedReturn> detected;
     std::vector<Return> returns;
+    const int rows = raster_.rows(), columns = raster_.columns();  // virtual: asked once, not per probe
 
     for (int step = first_step; step < end_step; ++step) {
         const RasterBeam beam = raster_.beam(row, step);
-        const std::size_t cell = static_cast<std::size_t>(row * raster_.columns() + beam.column);
+        const std::size_t cell = static_cast<std::size_t>(row * columns + beam.column);
         const BeamAim& a = aims_[cell];
         probes.clear();
         if (integrator_.adaptive()) {
             probes.push_back({0.0, 0.0, 1.0, a.world_from_beam.col(0), &axis_hit_[cell]});
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = beam.column + n.d_column;
-                if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
-                const std::size_t other = static_cast<std::size_t>(r * raster_.columns() + c);
+                if (r < 0 || r >= rows || c < 0 || c >= columns) continue;
+                const std::size_t other = static_cast<std::size_t>(r * columns + c);
                 probes.push_back({n.x_rad, n.y_rad, n.irradiance, aims_[other].world_from_beam.col(0), &axis_hit_[other]});
             }
             for (int k = 0; k < 4; ++k) {
@@ -224,11 +226,12 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
         gather_surfaces(echoes.surface, sensor.receiver.return_gap_m, surfaces);
         for (BeamSurface& v : echoes.volume) surfaces.push_back(std::move(v));
 
-        const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
-        const GimbalPointing beam_angles = pointing_towards(axis_sensor);
         const BeamKey key{scenario_.render.seed, frame, a.cell};
         std::uint8_t return_index = 0;
         receiver_.receive(surfaces, key, detected);
+        if (detected.empty()) continue;
+        const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
+        const GimbalPointing beam_angles = pointing_towards(axis_sensor);
         for (const DetectedReturn& d : detected) {
             Return r;
             r.range_m = d.range_m;
