@@ -114,36 +114,47 @@ bool agree(const Seen& a, const Seen& b, double gap_m) {
     return hi <= kMaterialContrast * lo;
 }
 
-/// Indices of `echoes` in order of (object id, range), stable: a least-significant-digit radix
-/// sort on the object id and the range's bits (a non-negative double's bits order as the double
-/// does), bytes every key shares skipped. A beam over a recorded map brings hundreds of echoes,
-/// where it costs a third of a comparison sort's mispredicted branches.
+/// Indices of `echoes` in order of (object id, range), stable. Most beams bring one or two echoes
+/// (an insertion sort: std::stable_sort allocates a buffer on every call); a beam over a recorded
+/// map brings hundreds, where a comparison sort's mispredicted branches cost three times a
+/// least-significant-digit radix sort on the object id and the range as a float (rounding to float
+/// keeps the order, merely making a few near neighbours equal, whose order an insertion pass over
+/// the exact ranges then settles: the same order as a stable sort on the exact keys).
 void sort_by_object_and_range(const std::vector<SurfaceEcho>& echoes, std::vector<std::uint32_t>& order) {
     const std::size_t n = echoes.size();
     order.resize(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    auto before = [&](std::uint32_t a, std::uint32_t b) {
+        const SurfaceEcho &x = echoes[a], &y = echoes[b];
+        return x.object_id != y.object_id ? x.object_id < y.object_id : x.range_m < y.range_m;
+    };
+    auto insertion = [&] {
+        for (std::size_t i = 1; i < n; ++i) {
+            const std::uint32_t v = order[i];
+            std::size_t j = i;
+            for (; j > 0 && before(v, order[j - 1]); --j) order[j] = order[j - 1];
+            order[j] = v;
+        }
+    };
     if (n < 64) {
-        std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-            const SurfaceEcho &x = echoes[a], &y = echoes[b];
-            return x.object_id != y.object_id ? x.object_id < y.object_id : x.range_m < y.range_m;
-        });
+        insertion();
         return;
     }
-    // Twelve bytes a key: eight of the range (low first), then four of the object id.
-    thread_local std::vector<std::array<std::uint32_t, 3>> keys;
+    // Eight bytes a key: four of the range as a float (low first), then four of the object id.
+    thread_local std::vector<std::array<std::uint32_t, 2>> keys;
     keys.resize(n);
-    std::array<std::array<std::uint32_t, 256>, 12> counts{};
+    std::array<std::array<std::uint32_t, 256>, 8> counts{};
     for (std::size_t i = 0; i < n; ++i) {
-        // +0.0 for a negative zero or any negative range (none reaches here), so that bits order.
-        const double range = echoes[i].range_m > 0.0 ? echoes[i].range_m : 0.0;
-        std::uint64_t bits;
+        // +0 for a negative zero or any negative range (none reaches here), so that bits order.
+        const float range = echoes[i].range_m > 0.0 ? static_cast<float>(echoes[i].range_m) : 0.0f;
+        std::uint32_t bits;
         std::memcpy(&bits, &range, sizeof bits);
-        keys[i] = {static_cast<std::uint32_t>(bits), static_cast<std::uint32_t>(bits >> 32), echoes[i].object_id};
-        for (int b = 0; b < 12; ++b) ++counts[static_cast<std::size_t>(b)][(keys[i][static_cast<std::size_t>(b / 4)] >> (8 * (b % 4))) & 0xFFu];
+        keys[i] = {bits, echoes[i].object_id};
+        for (int b = 0; b < 8; ++b) ++counts[static_cast<std::size_t>(b)][(keys[i][static_cast<std::size_t>(b / 4)] >> (8 * (b % 4))) & 0xFFu];
     }
     thread_local std::vector<std::uint32_t> other;
     other.resize(n);
-    for (int b = 0; b < 12; ++b) {
+    for (int b = 0; b < 8; ++b) {
         auto& count = counts[static_cast<std::size_t>(b)];
         const std::size_t word = static_cast<std::size_t>(b / 4);
         const int shift = 8 * (b % 4);
@@ -157,6 +168,7 @@ void sort_by_object_and_range(const std::vector<SurfaceEcho>& echoes, std::vecto
         for (const std::uint32_t i : order) other[count[(keys[i][word] >> shift) & 0xFFu]++] = i;
         order.swap(other);
     }
+    insertion();
 }
 
 }  // namespace
