@@ -1438,18 +1438,21 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     // One plane: every probe within the pulse's resolution of it, and the energy each probe saw
     // consistent with the plane's (the ratio's standard error within the tolerance).
     double q_sum = 0.0, q2_sum = 0.0, g2_sum = 0.0;
+    const double gap = scenario_.sensor.receiver.return_gap_m;
+    const double plane_distance2 = plane_distance * plane_distance;
     for (std::size_t k = 0; k < used.size(); ++k) {
         const Probe& p = *used[k];
         const Eigen::Vector3d& point = p.hit->point_world;
-        if (std::abs(normal.dot(point - centroid)) > scenario_.sensor.receiver.return_gap_m) return Patch::mixed;
+        if (std::abs(normal.dot(point - centroid)) > gap) return Patch::mixed;
         const double nd = normal.dot(p.direction_world);
         if (std::abs(nd) < 1e-9) return Patch::mixed;
-        const double model_range = plane_distance / nd;
-        const double model = reflectance * std::abs(nd) / (model_range * model_range);
+        // What the plane predicts the probe saw: reflectance |nd| / range^2 at the range
+        // plane_distance / nd, so reflectance |nd|^3 / plane_distance^2 (one division, not three).
+        const double model = reflectance * std::abs(nd) * nd * nd;
         const double seen = p.hit->seen;
         // A black patch (reflectance 0, e.g. a map point recorded with intensity 0) sees nothing
         // and the plane predicts nothing: they agree.
-        const double q = model > 0.0 ? seen / model : 1.0;
+        const double q = model > 0.0 ? seen * plane_distance2 / model : 1.0;
         q_sum += gauss[k] * q;
         q2_sum += gauss[k] * q * q;
         g2_sum += gauss[k] * gauss[k];
@@ -1462,10 +1465,10 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     // Integrate the plane over the footprint (outside the excluded part): no rays needed.
     double e_sum = 0.0, et_sum = 0.0, et2_sum = 0.0;
     int nodes = 0;
+    const Eigen::Vector3d normal_in_beam = aim.world_from_beam.transpose() * normal;  // n . (R q) = (R^T n) . q
     for (std::size_t k = 0; k < quadrature_in_beam_.size(); ++k) {
         if (excluded && footprint_.contains(*excluded, quadrature_x_[k], quadrature_y_[k])) continue;
-        const Eigen::Vector3d d = aim.world_from_beam * quadrature_in_beam_[k];
-        const double nd = normal.dot(d);
+        const double nd = normal_in_beam.dot(quadrature_in_beam_[k]);
         const double range = plane_distance / nd;
         if (!(range > 0.0) || range > scenario_.sensor.receiver.max_range_m) return Patch::mixed;
         // Clear-air transmission is applied below at the patch's mean range: across a footprint
