@@ -327,8 +327,10 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
             const auto& piece = by_stretch[row * static_cast<std::size_t>(stretches) + static_cast<std::size_t>(k)];
             returns.insert(returns.end(), piece.begin(), piece.end());
         }
-        // A triangle sweep fires odd lines right to left; frames list returns by column.
-        std::stable_sort(returns.begin(), returns.end(), [](const Return& a, const Return& b) { return a.column < b.column; });
+        // A triangle sweep fires odd lines right to left; frames list returns by column. (A
+        // line fired left to right is in order already: stable_sort would still allocate.)
+        const auto by_column = [](const Return& a, const Return& b) { return a.column < b.column; };
+        if (!std::is_sorted(returns.begin(), returns.end(), by_column)) std::stable_sort(returns.begin(), returns.end(), by_column);
     }
     rays_last_frame_ = 0;
     for (const std::uint64_t r : rays_by_row) rays_last_frame_ += r;
