@@ -143,6 +143,11 @@ private:
     void seed_offsets(const raytrace::ObjectBounds& b, const Eigen::Matrix3d& beam_from_world, std::vector<Eigen::Vector2d>& out) const;
     /// Whether a region's sub-rays, or the probes inside the footprint, met the recorded map.
     bool meets_map(const Region& region, std::span<const Probe* const> witnesses) const;
+    /// Whether the probes inside the footprint met the recorded map.
+    bool probes_meet_map(std::span<const Probe* const> witnesses) const;
+    /// A region over the recorded map by brute force: the shared lattice's sub-rays where there is
+    /// one (and no medium), else its own stratified ones at the map's budget.
+    void map_sub_rays(const BeamAim& aim, const Region& region, bool media, std::uint64_t frame, BeamEchoes& out) const;
     /// Traces the sub-rays of the regions not traced yet.
     void trace_samples(const BeamAim& aim, std::span<Region* const> regions, bool media, std::uint64_t frame, BeamEchoes& out) const;
     /// Whether the returns are settled; if not, marks the sub-rays to split. `echoes` is scratch.
