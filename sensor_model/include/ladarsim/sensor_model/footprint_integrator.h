@@ -96,7 +96,8 @@ struct BeamEchoes {
 ///    probe and the sub-ray of its cell, disagree (another object, another surface, nothing, another
 ///    medium, or half the echo), until what the receiver reports is settled: each return's energy known to
 ///    `footprint_tolerance` of itself, or of its (stretched) pulse's threshold when weaker
-///    (docs/sensor.md, "Footprint and returns").
+///    (docs/sensor.md, "Footprint and returns"). A lone target bright enough to spend the outline's
+///    budget anyway is one grid of it instead; a footprint over a recorded map takes brute force.
 class FootprintIntegrator {
 public:
     FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced, const BeamReceiver& receiver);
@@ -130,8 +131,9 @@ public:
 private:
     /// What a region's first cells try when they do not settle, before they are refined: nothing;
     /// one straight edge (straight_edge, a whole footprint without media or targets) and then
-    /// brute-force sub-rays (the shared lattice's, where there is one) where the cells or probes meet
-    /// a recorded map; or only the latter.
+    /// brute-force sub-rays (the shared lattice's, where there is one) where the cells meet a
+    /// recorded map; or only the latter. Where the footprint's probes meet the map, the first
+    /// cells are skipped for the brute force.
     enum class Unsettled { refine, edge_or_map, map };
     /// Refines the regions together until the returns they give, with the echoes already in
     /// `out`, are settled; their echoes are appended to `out`. `witnesses`: probes whose hits the
@@ -185,6 +187,7 @@ private:
     std::size_t outline_samples_;  ///< a target outline's (and a map footprint's) sub-ray budget at this tolerance
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
+    int grid_base_;             ///< cells along each axis of a bright lone target's grid (grid_base_^2 ~ outline_samples_)
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;
     Footprint map_cells_;  ///< stratified cells for a footprint that meets a recorded map (outline_samples_)
@@ -198,7 +201,6 @@ private:
         double max_reflectance = 0.0;              ///< of its materials: bounds its echo
     };
     std::unordered_map<std::uint32_t, TargetShape> target_shapes_;  ///< by object id
-    int grid_base_;  ///< cells along each axis of a bright lone target's grid (grid_base_^2 ~ outline_samples_)
 };
 
 }  // namespace ladarsim::sensor_model
