@@ -563,3 +563,34 @@ TEST_CASE("a bright lone drone: its energy as 4096 sub-rays weigh it, in all and
     CHECK(std::abs(a.total / total_reference - 1.0) < 0.01);
     CHECK(a.abs_error <= 1.25 * floor.abs_error);
 }
+
+TEST_CASE("gather_surfaces orders echoes by object and exact range, stably, also below float resolution", "[footprint]") {
+    // The sort takes the range as a float for its radix passes and settles what rounding made equal
+    // by an insertion pass over the exact ranges: against std::stable_sort on the exact keys, for a
+    // beam's few echoes and a map footprint's hundreds, with ranges 1e-7 m apart at 1 km (the
+    // float's step there is 6e-5 m), repeated keys, and two objects interleaved.
+    for (const int n : {5, 63, 64, 500}) {
+        std::vector<SurfaceEcho> echoes;
+        std::mt19937 random(static_cast<unsigned>(n));
+        for (int i = 0; i < n; ++i) {
+            SurfaceEcho e{};
+            e.range_m = 1000.0 + 1e-7 * static_cast<double>(random() % 13) + (random() % 5 == 0 ? 0.5 : 0.0);
+            e.weight = 1.0 / n;
+            e.energy_j = static_cast<double>(i);  // the echo's original place, to check stability
+            e.object_id = 1 + static_cast<std::uint32_t>(random() % 2);
+            echoes.push_back(e);
+        }
+        std::vector<SurfaceEcho> expected = echoes;
+        std::stable_sort(expected.begin(), expected.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) {
+            return a.object_id != b.object_id ? a.object_id < b.object_id : a.range_m < b.range_m;
+        });
+        gather_surfaces(echoes, 0.1);
+        REQUIRE(echoes.size() == expected.size());
+        for (std::size_t i = 0; i < echoes.size(); ++i) {
+            INFO(n << " echoes, place " << i);
+            CHECK(echoes[i].object_id == expected[i].object_id);
+            CHECK(echoes[i].range_m == expected[i].range_m);
+            CHECK(echoes[i].energy_j == expected[i].energy_j);
+        }
+    }
+}
