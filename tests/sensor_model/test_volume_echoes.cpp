@@ -60,6 +60,56 @@ TEST_CASE("free-path sampling of backscatter is an unbiased estimate of its inte
     CHECK(estimate == Approx(integral).epsilon(0.01));
 }
 
+TEST_CASE("several free paths a sub-ray: the same expected echo and range, scattering about n times less", "[volume]") {
+    // Each segment's n draws become one echo at their energy-weighted mean range, stretched by
+    // their spread: over many sub-rays the energy and the energy-weighted range (the moments the
+    // receiver takes of a volume's echoes) are those of the integral, and the echoes' ranges
+    // scatter far less than one draw's do (stratified, about n times less for a smooth
+    // distribution; independent draws would give sqrt(n)).
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
+    const BeamReceiver receiver(c, test::vacuum(), false);
+    const scene::Material fog = scene::fog_medium("fog", 150.0);
+    const raytrace::VolumeSegment segment{9, 40.0, 140.0, fog.extinction_per_m, fog.backscatter_per_m_sr};
+    const double area = c.optics.aperture_area_m2(), r2 = area / M_PI;
+    double integral = 0.0, range_integral = 0.0, second_integral = 0.0;
+    const int steps = 100000;
+    const double ds = 100.0 / steps;
+    for (int k = 0; k < steps; ++k) {
+        const double s = (k + 0.5) * ds, range = 40.0 + s;
+        const double e = fog.backscatter_per_m_sr * std::exp(-2.0 * fog.extinction_per_m * s) * M_PI * r2 / (range * range + r2) * ds;
+        integral += e;
+        range_integral += e * range;
+        second_integral += e * range * range;
+    }
+    const double mean_range = range_integral / integral;
+    const double sigma = std::sqrt(second_integral / integral - mean_range * mean_range);
+    auto run = [&](int free_paths) {
+        const int sub_rays = 50000;
+        RandomSequence rng(12, RandomStream::volume_scatter, 0, 0);
+        std::vector<BeamSurface> volumes;
+        for (int i = 0; i < sub_rays; ++i)
+            add_volume_echoes(std::span(&segment, 1), 1e9, 1.0, 1.0 / sub_rays, area, receiver, rng, volumes, free_paths);
+        REQUIRE(volumes.size() == 1);
+        double energy = 0.0, moment = 0.0, second = 0.0, plain = 0.0, plain2 = 0.0;
+        for (const Echo& e : volumes[0].echoes) {
+            energy += e.energy_j;
+            moment += e.energy_j * e.range_m;
+            second += e.energy_j * (e.range_m * e.range_m + e.spread_m * e.spread_m);
+            plain += e.range_m;
+            plain2 += e.range_m * e.range_m;
+        }
+        const double n = static_cast<double>(volumes[0].echoes.size());
+        CHECK(energy / sub_rays == Approx(integral).epsilon(0.01));
+        CHECK(moment / energy == Approx(mean_range).epsilon(0.002));
+        CHECK(std::sqrt(second / energy - (moment / energy) * (moment / energy)) == Approx(sigma).epsilon(0.02));
+        return std::sqrt(plain2 / n - (plain / n) * (plain / n));  // the echoes' own scatter
+    };
+    const double one = run(1), sixteen = run(16);
+    INFO("echo ranges scatter by " << one << " m with one free path, " << sixteen << " m with 16");
+    CHECK(sixteen < one / 8.0);
+}
+
 TEST_CASE("a sensor inside fog: the wall behind is dimmed by exp(-2 tau), the fog itself returns", "[volume]") {
     Scenario s = test::closed_form_scenario();
     test::set_raster(s.sensor, 5, 1, 0.01, 0.01);

@@ -55,6 +55,10 @@ public:
     const WaveformReceiver& waveform() const { return waveform_; }
     /// One-way transmission of the clear air over `range_m`.
     double transmission(double range_m) const;
+    /// The clear air's extinction coefficient at the sensor's wavelength.
+    double extinction_per_m() const { return extinction_per_m_; }
+    /// Echoes from closer than this are never seen (the detector is blind from the outgoing pulse).
+    double min_range_m() const { return sensor_.receiver.min_range_m; }
 
 private:
     DetectedReturn closed_form(const BeamSurface& surface, RandomSequence& noise) const;
