@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -422,15 +421,13 @@ double FootprintIntegrator::threshold_energy_j(double spread_m) const {
     return apd.threshold_a() / (apd.amps_per_watt() * shape.peak_per_joule());
 }
 
-void FootprintIntegrator::seed_offsets(const raytrace::ObjectBounds& b, const Eigen::Matrix3d& beam_from_world,
+void FootprintIntegrator::seed_offsets(const raytrace::ObjectBounds& b, const TargetShape& shape, const Eigen::Matrix3d& beam_from_world,
                                        std::vector<Eigen::Vector2d>& out) const {
-    const auto it = target_shapes_.find(b.object_id);
-    if (it == target_shapes_.end()) return;
     const Eigen::Vector3d& origin = scenario_.mount.position_world;
     // Nearest the axis by the tangents of the offsets (as good as the angles this close to it).
     thread_local std::vector<std::pair<double, Eigen::Vector3d>> candidates;
     candidates.clear();
-    for (const Eigen::Vector3d& p : it->second.seed_points) {
+    for (const Eigen::Vector3d& p : shape.seed_points) {
         const Eigen::Vector3d c = beam_from_world * (b.world_from_model * p.homogeneous() - origin);
         if (!(c.x() > 0.0)) continue;
         const double ty = c.y() / c.x(), tz = c.z() / (c.x() * ellipticity_);
@@ -510,14 +507,17 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         }
         const std::optional<FootprintRect> seen = footprint_.clip(outline);
         if (!seen) continue;
-        seed_offsets(b, beam_from_world, seeds_at);
         ++targets_met;
-        const auto shape = target_shapes_.find(b.object_id);
+        // Its seeds, and the largest echo it could send back: its outline's share at its brightest
+        // material facing the beam at its nearest range (an object without a mesh: reflectance 1).
+        double max_reflectance = 1.0;
+        if (const auto shape = target_shapes_.find(b.object_id); shape != target_shapes_.end()) {
+            seed_offsets(b, shape->second, beam_from_world, seeds_at);
+            max_reflectance = shape->second.max_reflectance;
+        }
         const double share = footprint_.cell_weight(footprint_.axis_cdf(seen->x_hi) - footprint_.axis_cdf(seen->x_lo),
                                                     footprint_.axis_cdf(seen->y_hi) - footprint_.axis_cdf(seen->y_lo));
-        const double nearest_m = std::max(distance - b.radius_m, 1e-3);
-        brightest_j = std::max(brightest_j, echo_energy_j(share, shape != target_shapes_.end() ? shape->second.max_reflectance : 1.0,
-                                                          1.0, nearest_m, 1.0));
+        brightest_j = std::max(brightest_j, echo_energy_j(share, max_reflectance, 1.0, std::max(distance - b.radius_m, 1e-3), 1.0));
         // Several at once (a flock, a drone among birds): one rectangle around them all, in which
         // the seeds below keep a sparse one from being missed.
         targets = targets ? FootprintRect{std::min(targets->x_lo, seen->x_lo), std::max(targets->x_hi, seen->x_hi),
@@ -622,10 +622,10 @@ bool FootprintIntegrator::probes_meet_map(std::span<const Probe* const> witnesse
     });
 }
 
-bool FootprintIntegrator::meets_map(const Region& region, std::span<const Probe* const> witnesses) const {
-    const auto map = [](const Seen& seen) { return seen.hit && seen.echo.object_id == scene::kBackgroundObjectId; };
-    return std::any_of(region.nodes.begin(), region.nodes.end(), [&](const Region::Node& n) { return n.weight > 0.0 && map(n.seen); }) ||
-           probes_meet_map(witnesses);
+bool FootprintIntegrator::cells_meet_map(const Region& region) const {
+    return std::any_of(region.nodes.begin(), region.nodes.end(), [](const Region::Node& n) {
+        return n.weight > 0.0 && n.seen.hit && n.seen.echo.object_id == scene::kBackgroundObjectId;
+    });
 }
 
 void FootprintIntegrator::map_sub_rays(const BeamAim& aim, const Region& region, bool media, std::uint64_t frame, BeamEchoes& out) const {
@@ -751,7 +751,8 @@ void FootprintIntegrator::refine(const BeamAim& aim, std::span<Region* const> re
             // refinement would pay its bookkeeping for every sub-ray up to its budget and still
             // judge energies only, not where in range they fall. Brute-force sub-rays at that budget
             // cost less and place the returns better (docs/sensor.md, "Footprint and returns").
-            if (meets_map(r, witnesses)) {
+            // (Probes that met the map sent the region here before its first cells.)
+            if (cells_meet_map(r)) {
                 map_sub_rays(aim, r, media, frame, out);
                 break;
             }

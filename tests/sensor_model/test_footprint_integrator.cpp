@@ -574,6 +574,8 @@ TEST_CASE("gather_surfaces orders echoes by object and exact range, stably, also
         std::mt19937 random(static_cast<unsigned>(n));
         for (int i = 0; i < n; ++i) {
             SurfaceEcho e{};
+            e.point_world.setZero();
+            e.normal_world.setZero();
             e.range_m = 1000.0 + 1e-7 * static_cast<double>(random() % 13) + (random() % 5 == 0 ? 0.5 : 0.0);
             e.weight = 1.0 / n;
             e.energy_j = static_cast<double>(i);  // the echo's original place, to check stability

@@ -140,11 +140,17 @@ private:
     /// sub-rays of their cells must agree with. `first_cells`: the shortcut for one region.
     void refine(const BeamAim& aim, std::span<Region* const> regions, std::span<const Probe* const> witnesses, bool media,
                 std::uint64_t frame, BeamEchoes& out, Unsettled first_cells = Unsettled::refine) const;
-    /// Appends the footprint offsets of the points of target `b` (of its seed candidates) nearest the
-    /// beam's axis, those inside the truncation.
-    void seed_offsets(const raytrace::ObjectBounds& b, const Eigen::Matrix3d& beam_from_world, std::vector<Eigen::Vector2d>& out) const;
-    /// Whether a region's sub-rays, or the probes inside the footprint, met the recorded map.
-    bool meets_map(const Region& region, std::span<const Probe* const> witnesses) const;
+    /// What the integrator knows ahead of a mesh object met as a target.
+    struct TargetShape {
+        std::vector<Eigen::Vector3d> seed_points;  ///< facet centroids (model coordinates) tried as seeds
+        double max_reflectance = 0.0;              ///< of its materials: bounds its echo
+    };
+    /// Appends the footprint offsets of the points of target `b` (of its seed candidates, `shape`)
+    /// nearest the beam's axis, those inside the truncation.
+    void seed_offsets(const raytrace::ObjectBounds& b, const TargetShape& shape, const Eigen::Matrix3d& beam_from_world,
+                      std::vector<Eigen::Vector2d>& out) const;
+    /// Whether a region's sub-rays met the recorded map.
+    bool cells_meet_map(const Region& region) const;
     /// Whether the probes inside the footprint met the recorded map.
     bool probes_meet_map(std::span<const Probe* const> witnesses) const;
     /// A region over the recorded map by brute force: the shared lattice's sub-rays where there is
@@ -195,11 +201,6 @@ private:
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
     const SubRayLattice* lattice_ = nullptr;
-    /// What the integrator knows ahead of a mesh object met as a target.
-    struct TargetShape {
-        std::vector<Eigen::Vector3d> seed_points;  ///< facet centroids (model coordinates) tried as seeds
-        double max_reflectance = 0.0;              ///< of its materials: bounds its echo
-    };
     std::unordered_map<std::uint32_t, TargetShape> target_shapes_;  ///< by object id
 };
 
