@@ -11,6 +11,7 @@
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
 #include "ladarsim/sensor_model/sub_ray_lattice.h"
+#include "ladarsim/sensor_model/target_lattice.h"
 #include "ladarsim/sensor_model/volume_echoes.h"
 
 namespace ladarsim::sensor_model {
@@ -467,8 +468,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     std::optional<FootprintRect> targets;  ///< the outline of every small or moving object met
     int targets_met = 0;
     double brightest_j = 0.0;  ///< the largest echo any of them could send back
-    thread_local std::vector<Eigen::Vector2d> seeds_at;  ///< points of each on its surface
-    seeds_at.clear();
+    std::uint32_t lone_id = 0;  ///< the last one met: with one, that one
+    thread_local std::vector<std::pair<const raytrace::ObjectBounds*, const TargetShape*>> with_seeds;  ///< those with a mesh
+    with_seeds.clear();
     for (const raytrace::ObjectBounds& b : objects) {
         const Eigen::Vector3d v = beam_from_world * (b.centre_world - origin);
         const double distance = v.norm();
@@ -511,13 +513,15 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         // Its seeds, and the largest echo it could send back: its outline's share at its brightest
         // material facing the beam at its nearest range (an object without a mesh: reflectance 1).
         double max_reflectance = 1.0;
-        if (const auto shape = target_shapes_.find(b.object_id); shape != target_shapes_.end()) {
-            seed_offsets(b, shape->second, beam_from_world, seeds_at);
+        const auto shape = target_shapes_.find(b.object_id);
+        if (shape != target_shapes_.end()) {
+            with_seeds.emplace_back(&b, &shape->second);
             max_reflectance = shape->second.max_reflectance;
         }
         const double share = footprint_.cell_weight(footprint_.axis_cdf(seen->x_hi) - footprint_.axis_cdf(seen->x_lo),
                                                     footprint_.axis_cdf(seen->y_hi) - footprint_.axis_cdf(seen->y_lo));
         brightest_j = std::max(brightest_j, echo_energy_j(share, max_reflectance, 1.0, std::max(distance - b.radius_m, 1e-3), 1.0));
+        lone_id = b.object_id;
         // Several at once (a flock, a drone among birds): one rectangle around them all, in which
         // the seeds below keep a sparse one from being missed.
         targets = targets ? FootprintRect{std::min(targets->x_lo, seen->x_lo), std::max(targets->x_hi, seen->x_hi),
@@ -540,21 +544,26 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     // box a thin or sparse target barely fills (a bird's wing edge-on, a quadcopter's arms, a
     // drone in one rectangle with the birds around it), and cells that all meet nothing agree and
     // settle; a seed that met the target splits its cell until it is a cell's sub-ray itself.
+    // (Traced only where refinement will ask them: a bright lone target's grid does not.)
+    thread_local std::vector<Eigen::Vector2d> seeds_at;
     thread_local std::vector<Probe> seeds;
     thread_local std::vector<ProbeHit> seed_hits;
     thread_local std::vector<raytrace::Ray> seed_rays;
     thread_local std::vector<std::optional<raytrace::Hit>> seed_results;
-    seeds.clear();
-    seed_rays.clear();
-    for (const Eigen::Vector2d& o : seeds_at) {
-        raytrace::Ray ray;
-        ray.origin_world = origin;
-        ray.direction = aim.world_from_beam * in_beam(o.x(), o.y());
-        ray.time_s = aim.time_s;
-        ray.max_range_m = scenario_.sensor.receiver.max_range_m;
-        seed_rays.push_back(ray);
-    }
-    if (!seed_rays.empty()) {
+    auto add_seeds = [&] {
+        seeds_at.clear();
+        for (const auto& [b, shape] : with_seeds) seed_offsets(*b, *shape, beam_from_world, seeds_at);
+        if (seeds_at.empty()) return;
+        seeds.clear();
+        seed_rays.clear();
+        for (const Eigen::Vector2d& o : seeds_at) {
+            raytrace::Ray ray;
+            ray.origin_world = origin;
+            ray.direction = aim.world_from_beam * in_beam(o.x(), o.y());
+            ray.time_s = aim.time_s;
+            ray.max_range_m = scenario_.sensor.receiver.max_range_m;
+            seed_rays.push_back(ray);
+        }
         seed_results.resize(seed_rays.size());
         traced_.trace(seed_rays, seed_results);
         out.rays += static_cast<int>(seed_rays.size());
@@ -565,27 +574,37 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
                              seed_rays[k].direction, &seed_hits[k]});
         }
         for (const Probe& p : seeds) witnesses.push_back(&p);
-    }
+    };
 
     // Targets are sampled where they can be; the rest of the footprint, like a footprint without
     // targets, is one plane patch when the probes agree, and refined otherwise (always in media).
     thread_local Region target_region, rest_region;
     if (targets) {
-        target_region.reset(footprint_, *targets, std::nullopt, 0.0, 0);
-        target_region.outline = true;
-        target_region.base = kOutlineBase;
-        target_region.max_samples = outline_samples_;
-        if (targets_met == 1 && brightest_j >= kBrightTargetThresholds * threshold_energy_j(0.0)) {
-            target_region.base = grid_base_;
-            target_region.max_samples = static_cast<std::size_t>(grid_base_ * grid_base_);
-        }
-        Region* const first[] = {&target_region};
-        refine(aim, first, witnesses, media, frame, out);
+        const bool bright_lone = targets_met == 1 && brightest_j >= kBrightTargetThresholds * threshold_energy_j(0.0);
         double sampled = 0.0;
-        for (const Region::Node& n : target_region.nodes)
-            if (n.leaf() && n.kept) sampled += n.weight * target_region.scale;
+        const std::optional<double> shared =
+            bright_lone && !media && target_lattice_ ? target_lattice_->gather(aim, lone_id, *targets, out) : std::nullopt;
+        if (shared) {
+            sampled = *shared;  // its line's sub-rays over it
+        } else {
+            target_region.reset(footprint_, *targets, std::nullopt, 0.0, 0);
+            target_region.outline = true;
+            target_region.base = kOutlineBase;
+            target_region.max_samples = outline_samples_;
+            if (bright_lone) {
+                target_region.base = grid_base_;
+                target_region.max_samples = static_cast<std::size_t>(grid_base_ * grid_base_);
+            } else {
+                add_seeds();
+            }
+            Region* const first[] = {&target_region};
+            refine(aim, first, witnesses, media, frame, out);
+            for (const Region::Node& n : target_region.nodes)
+                if (n.leaf() && n.kept) sampled += n.weight * target_region.scale;
+        }
         const double rest = 1.0 - sampled;
         if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed)) {
+            if (bright_lone) add_seeds();
             rest_region.reset(footprint_, footprint_.square(), targets, rest, kComplementSamples);
             Region* const second[] = {&rest_region};
             refine(aim, second, witnesses, media, frame, out, Unsettled::map);

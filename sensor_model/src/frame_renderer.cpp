@@ -57,6 +57,12 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         if (lattice_->usable()) integrator_.share_sub_rays(lattice_.get());
         else lattice_.reset();
     }
+    if (integrator_.adaptive() && TargetLattice::worthwhile(integrator_.footprint(), raster_)) {
+        target_lattice_ = std::make_unique<TargetLattice>(traced_, raster_, integrator_, scenario.mount.position_world,
+                                                          world_from_sensor_rotation_, scenario.sensor.receiver.max_range_m,
+                                                          scenario.render.seed, scenario.render.jitter);
+        integrator_.share_target_sub_rays(target_lattice_.get());
+    }
 }
 
 void FrameRenderer::find_neighbours() {
@@ -309,6 +315,7 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
     if (lattice_) lattice_->start_frame(pointing, index);
+    if (target_lattice_) target_lattice_->start_frame(pointing, index, frame.start_time_s);
     // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
     // stretches keep both cores busy.
     constexpr int kStepsPerTask = 16;

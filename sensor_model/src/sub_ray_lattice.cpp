@@ -16,14 +16,6 @@ namespace {
 
 constexpr int kTile = 16;  ///< lattice cells along each side of a tile
 
-/// atan(t) for the ratios of a footprint's offsets: below 0.01 the series' first three terms are
-/// exact to double precision and cost a fraction of std::atan.
-double small_atan(double t) {
-    if (std::abs(t) >= 0.01) return std::atan(t);
-    const double t2 = t * t;
-    return t * (1.0 - t2 * (1.0 / 3.0 - t2 / 5.0));
-}
-
 }  // namespace
 
 double SubRayLattice::overlap(const Footprint& footprint, double ellipticity, const ScanPattern& raster) {

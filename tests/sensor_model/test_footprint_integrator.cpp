@@ -521,7 +521,10 @@ TEST_CASE("a bright lone drone: its energy as 4096 sub-rays weigh it, in all and
     // misweighed them: its energy in all -2.1 % of the reference's, a strong beam's off by 15.9 % on
     // average where a second reference (another seed) is off by 9.6 % (11.6 % with a third seed:
     // a drone's thin parts scatter even 4096 sub-rays). Sampled as one stratified grid of that
-    // budget: -0.4 % and 10.3 %.
+    // budget: -0.4 % and 10.3 %. The beams of a line now share one stratified lattice over it
+    // (TargetLattice): a strong beam's error 9.7 %, and one render's total scatters by about 1 %
+    // between seeds (the ~15 beams of a line weigh the same few hundred sub-rays), so the total's
+    // bias is judged on the mean of eight renders: +0.2 %.
     Scenario s = closed_form_scenario();
     set_raster(s.sensor, 48, 20, 0.5 * 48 / 150, 0.5);
     auto model = std::make_shared<const scene::Model>(scene::make_quadcopter());
@@ -538,6 +541,7 @@ TEST_CASE("a bright lone drone: its energy as 4096 sub-rays weigh it, in all and
         return energy;
     };
     const auto adaptive = render(0, 1), reference = render(4096, 2), second = render(4096, 3);
+    constexpr std::array<std::uint64_t, 8> kSeeds = {1, 4, 5, 6, 7, 8, 9, 10};
     const double threshold_pe = threshold_photoelectrons(s);
     struct Against {
         double total = 0.0, abs_error = 0.0;  ///< energy in all; summed relative error of the strong beams
@@ -557,10 +561,13 @@ TEST_CASE("a bright lone drone: its energy as 4096 sub-rays weigh it, in all and
     double total_reference = 0.0;
     for (const auto& [key, e] : reference) total_reference += e;
     const Against a = against(adaptive), floor = against(second);
-    INFO(strong << " strong beams; in all " << a.total / total_reference - 1.0 << " (second reference " << floor.total / total_reference - 1.0
-                << "); a strong beam's mean |error| " << a.abs_error / strong << " (second reference " << floor.abs_error / strong << ")");
+    double mean_total = 0.0;
+    for (const std::uint64_t seed : kSeeds) mean_total += (seed == 1 ? a : against(render(0, seed))).total / kSeeds.size();
+    INFO(strong << " strong beams; in all " << mean_total / total_reference - 1.0 << " (one render " << a.total / total_reference - 1.0
+                << ", second reference " << floor.total / total_reference - 1.0 << "); a strong beam's mean |error| "
+                << a.abs_error / strong << " (second reference " << floor.abs_error / strong << ")");
     REQUIRE(strong > 40);
-    CHECK(std::abs(a.total / total_reference - 1.0) < 0.01);
+    CHECK(std::abs(mean_total / total_reference - 1.0) < 0.01);
     CHECK(a.abs_error <= 1.25 * floor.abs_error);
 }
 

@@ -16,6 +16,7 @@ enum class RandomStream : std::uint32_t {
     volume_scatter = 6,   ///< free paths inside fog and cloud
     lattice_jitter = 7,   ///< a frame's shared sub-rays (SubRayLattice), keyed by their place in it
     lattice_choice = 8,   ///< which of them a beam takes
+    target_lattice_jitter = 9,  ///< a line's shared sub-rays over a target (TargetLattice)
 };
 
 /// Four independent uniform numbers in (0, 1] for one (stream, frame, beam, sample).

@@ -75,8 +75,10 @@ struct Probe {
     const ProbeHit* hit;
 };
 
-/// What one beam met, before the receiver.
 class SubRayLattice;
+class TargetLattice;
+
+/// What one beam met, before the receiver.
 
 struct BeamEchoes {
     std::vector<SurfaceEcho> surface;
@@ -116,6 +118,11 @@ public:
     /// Where a footprint over a recorded map takes brute force (without media), it takes the
     /// lattice's shared sub-rays instead of tracing its own (null: its own). Set before rendering.
     void share_sub_rays(const SubRayLattice* lattice) { lattice_ = lattice; }
+    /// Where a bright lone target is sampled (without media), its line's shared sub-rays over it
+    /// instead of a grid of its own where the lattice holds it (null: its own). Set before rendering.
+    void share_target_sub_rays(const TargetLattice* lattice) { target_lattice_ = lattice; }
+    /// Strata along each axis of a bright lone target's grid (its square ~ map_samples()).
+    int grid_base() const { return grid_base_; }
     /// Sub-rays a footprint over a recorded map (or a target's outline) takes at this tolerance.
     std::size_t map_samples() const { return outline_samples_; }
     /// Echo energy of a sub-ray carrying `weight` of the beam that meets a surface (fog: the two-way
@@ -201,6 +208,7 @@ private:
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
     const SubRayLattice* lattice_ = nullptr;
+    const TargetLattice* target_lattice_ = nullptr;
     std::unordered_map<std::uint32_t, TargetShape> target_shapes_;  ///< by object id
 };
 

@@ -12,6 +12,7 @@
 #include "ladarsim/sensor_model/gimbal.h"
 #include "ladarsim/sensor_model/scenario.h"
 #include "ladarsim/sensor_model/sub_ray_lattice.h"
+#include "ladarsim/sensor_model/target_lattice.h"
 
 namespace ladarsim::sensor_model {
 
@@ -71,6 +72,9 @@ private:
     FootprintIntegrator integrator_;
     /// Sub-rays shared by overlapping footprints over a recorded map (null where they do not pay).
     std::unique_ptr<SubRayLattice> lattice_;
+    /// Sub-rays over a bright lone target shared by the footprints of a line (null where they
+    /// would not overlap).
+    std::unique_ptr<TargetLattice> target_lattice_;
     std::vector<GimbalPointing> pointing_by_frame_;
     std::vector<Neighbour> neighbours_;
     /// By (row, step): each beam's offset rotations, AngleAxis(az_offset, z) and

@@ -1,0 +1,262 @@
+#include "ladarsim/sensor_model/target_lattice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include <Eigen/Geometry>
+
+#include "ladarsim/sensor_model/counter_random.h"
+
+namespace ladarsim::sensor_model {
+
+namespace {
+
+/// A beam takes the lattice only where at least this share of its own grid's budget falls inside
+/// its view of the outline (a footprint whose edge crosses the target sees a sliver of the line's
+/// lattice; it samples the sliver itself).
+constexpr double kMinShareOfBudget = 0.1;
+/// A lattice spans at most this many footprint widths along its line (a target filling the field
+/// at close range): beyond, its beams sample it themselves.
+constexpr double kMaxFootprintsAlong = 16.0;
+/// How far a beam's view of an outline may reach past the lattice's bounds and still count as held:
+/// rounding (a footprint is 1e-3 rad across; a sliver this wide holds 1e-5 of it).
+constexpr double kSlack_rad = 1e-9;
+
+}  // namespace
+
+bool TargetLattice::worthwhile(const Footprint& footprint, const ScanPattern& raster) {
+    return 2.0 * footprint.max_offset_rad() / raster.pitch_az_rad() >= kMinBeamsAcross;
+}
+
+TargetLattice::TargetLattice(const raytrace::TracedScene& traced, const ScanPattern& raster, const FootprintIntegrator& integrator,
+                             const Eigen::Vector3d& origin_world, const Eigen::Matrix3d& world_from_sensor, double max_range_m,
+                             std::uint64_t seed, bool jitter)
+    : traced_(traced),
+      integrator_(integrator),
+      footprint_(integrator.footprint()),
+      ellipticity_(integrator.ellipticity()),
+      grid_base_(integrator.grid_base()),
+      origin_world_(origin_world),
+      world_from_sensor_(world_from_sensor),
+      max_range_m_(max_range_m),
+      seed_(seed),
+      jitter_(jitter),
+      columns_(raster.columns()) {
+    for (int row = 0; row < raster.rows(); ++row) {
+        Line line;
+        line.az_lo = 1e300;
+        line.az_hi = -1e300;
+        for (int k = 0; k < raster.columns(); ++k) {
+            const RasterBeam b = raster.beam(row, k);
+            line.el_rad += b.el_offset_rad / raster.columns();
+            line.az_lo = std::min(line.az_lo, b.az_offset_rad);
+            line.az_hi = std::max(line.az_hi, b.az_offset_rad);
+            line.time_by_az.emplace_back(b.az_offset_rad, b.time_offset_s);
+        }
+        std::sort(line.time_by_az.begin(), line.time_by_az.end());
+        lines_.push_back(std::move(line));
+    }
+    std::vector<raytrace::ObjectBounds> objects;
+    traced_.object_bounds(0.0, objects);
+    for (const raytrace::ObjectBounds& b : objects)
+        if (!b.volume) target_index_.emplace(b.object_id, target_index_.size());
+    slots_ = std::make_unique<Slot[]>(lines_.size() * target_index_.size());
+}
+
+void TargetLattice::start_frame(GimbalPointing pointing, std::uint64_t frame, double frame_start_s) {
+    const Eigen::Quaterniond gimbal =
+        Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
+    world_from_gimbal_ = world_from_sensor_ * gimbal.toRotationMatrix();
+    frame_ = frame;
+    frame_start_s_ = frame_start_s;
+    for (std::size_t s = 0; s < lines_.size() * target_index_.size(); ++s) slots_[s].state.store(0, std::memory_order_relaxed);
+}
+
+Eigen::Vector3d TargetLattice::direction_world(double az, double el) const {
+    return world_from_gimbal_ * Eigen::Vector3d(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+}
+
+Eigen::Vector2d TargetLattice::raster_angles(const Eigen::Vector3d& direction_world) const {
+    const Eigen::Vector3d v = world_from_gimbal_.transpose() * direction_world;
+    return {std::atan2(v.y(), v.x()), std::atan2(v.z(), std::hypot(v.x(), v.y()))};
+}
+
+double TargetLattice::time_at(const Line& line, double az) const {
+    // Linear between the two beams either side in azimuth (a galvo line is a ramp in time).
+    const auto& t = line.time_by_az;
+    const auto above = std::lower_bound(t.begin(), t.end(), std::make_pair(az, -1e300));
+    if (above == t.begin()) return t.front().second;
+    if (above == t.end()) return t.back().second;
+    const auto below = above - 1;
+    const double f = (az - below->first) / (above->first - below->first);
+    return below->second + f * (above->second - below->second);
+}
+
+const TargetLattice::Slot& TargetLattice::ensure(int line, std::size_t target, std::uint32_t object_id, int& rays) const {
+    Slot& slot = slots_[static_cast<std::size_t>(line) * target_index_.size() + target];
+    std::uint8_t now = slot.state.load(std::memory_order_acquire);
+    if (now == 2) return slot;
+    if (now == 0 && slot.state.compare_exchange_strong(now, 1, std::memory_order_acq_rel)) {
+        try {
+            trace_slot(slot, line, object_id);
+            rays += slot.rays;
+            slot.state.store(2, std::memory_order_release);
+            return slot;
+        } catch (...) {
+            slot.state.store(3, std::memory_order_release);
+            throw;
+        }
+    }
+    // Another thread traces it: a lattice is a few hundred rays, so waiting beats tracing it twice.
+    while ((now = slot.state.load(std::memory_order_acquire)) == 1) std::this_thread::yield();
+    if (now == 3) throw std::runtime_error("target lattice: tracing failed on another thread");
+    return slot;
+}
+
+void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_id) const {
+    slot.points.clear();
+    slot.rays = 0;
+    slot.az_lo = slot.az_hi = slot.el_lo = slot.el_hi = 0.0;
+    const Line& line = lines_[static_cast<std::size_t>(line_index)];
+    // The target's box as the line sees it while it fires: its corners' raster angles at the
+    // line's first, middle and last beam.
+    double az_lo = 1e300, az_hi = -1e300, el_lo = 1e300, el_hi = -1e300;
+    const double t_first = frame_start_s_ + std::min(line.time_by_az.front().second, line.time_by_az.back().second);
+    const double t_last = frame_start_s_ + std::max(line.time_by_az.front().second, line.time_by_az.back().second);
+    thread_local std::vector<raytrace::ObjectBounds> objects;
+    for (const double t : {t_first, 0.5 * (t_first + t_last), t_last}) {
+        traced_.object_bounds(t, objects);
+        const auto b = std::find_if(objects.begin(), objects.end(), [&](const raytrace::ObjectBounds& o) { return o.object_id == object_id; });
+        if (b == objects.end()) return;
+        for (int k = 0; k < 8; ++k) {
+            const Eigen::Vector3d corner = b->box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
+            const Eigen::Vector3d v = world_from_gimbal_.transpose() * (b->world_from_model * corner.homogeneous() - origin_world_);
+            if (!(v.x() > 0.0)) return;  // beside or behind the sensor: its beams sample it themselves
+            const Eigen::Vector2d a = raster_angles(world_from_gimbal_ * v);
+            az_lo = std::min(az_lo, a.x());
+            az_hi = std::max(az_hi, a.x());
+            el_lo = std::min(el_lo, a.y());
+            el_hi = std::max(el_hi, a.y());
+        }
+    }
+    // Padded as a beam's outline is (Embree's single-precision placement), and clipped to what
+    // the line's footprints reach. A footprint offset y is an elevation over the ellipticity.
+    const double pad = 1e-5 * std::max(az_hi - az_lo, el_hi - el_lo) + 1e-9;
+    const double r_max = footprint_.max_offset_rad();
+    const double reach_el = r_max * ellipticity_;
+    const double reach_az = r_max / std::cos(std::abs(line.el_rad) + reach_el);
+    az_lo = std::max(az_lo - pad, line.az_lo - reach_az);
+    az_hi = std::min(az_hi + pad, line.az_hi + reach_az);
+    el_lo = std::max(el_lo - pad, line.el_rad - reach_el);
+    el_hi = std::min(el_hi + pad, line.el_rad + reach_el);
+    if (!(az_lo < az_hi && el_lo < el_hi)) return;
+    // A footprint's view of the target spans at most its own width: as many strata across that as
+    // a beam's grid has (grid_base_), uniform along the line, of equal energy across it.
+    const double width_az = 2.0 * reach_az;
+    const double seen_az = std::min(az_hi - az_lo, width_az);
+    if ((az_hi - az_lo) > kMaxFootprintsAlong * width_az) return;
+    const int columns = std::max(1, static_cast<int>(std::ceil((az_hi - az_lo) / seen_az * grid_base_)));
+    const double step_az = (az_hi - az_lo) / columns;
+    const double cdf_lo = footprint_.axis_cdf((el_lo - line.el_rad) / ellipticity_);
+    const double cdf_step = (footprint_.axis_cdf((el_hi - line.el_rad) / ellipticity_) - cdf_lo) / grid_base_;
+    slot.az_lo = az_lo;
+    slot.az_hi = az_hi;
+    slot.el_lo = el_lo;
+    slot.el_hi = el_hi;
+
+    thread_local std::vector<raytrace::Ray> rays;
+    thread_local std::vector<std::optional<raytrace::Hit>> hits;
+    rays.clear();
+    const std::size_t target = target_index_.at(object_id);
+    for (int j = 0; j < grid_base_; ++j) {
+        auto el_at = [&](double cdf) { return line.el_rad + ellipticity_ * footprint_.axis_offset(cdf); };
+        const double cell_lo = el_at(cdf_lo + j * cdf_step), cell_hi = el_at(cdf_lo + (j + 1) * cdf_step);
+        for (int i = 0; i < columns; ++i) {
+            const std::uint32_t index = static_cast<std::uint32_t>(j * columns + i);
+            double ja = 0.5, je = 0.5;
+            if (jitter_) {
+                const auto u = uniform4(seed_, RandomStream::target_lattice_jitter, frame_,
+                                        static_cast<std::uint32_t>(line_index * target_index_.size() + target), index);
+                ja = u[0];
+                je = u[1];
+            }
+            const double az = az_lo + (i + ja) * step_az;
+            const double el = el_at(cdf_lo + (j + je) * cdf_step);
+            Point p;
+            p.direction_world = direction_world(az, el);
+            // In footprint offsets: azimuth foreshortened by the line's elevation, elevation over the ellipticity.
+            p.area = step_az * std::cos(line.el_rad) * (cell_hi - cell_lo) / ellipticity_;
+            slot.points.push_back(p);
+            raytrace::Ray ray;
+            ray.origin_world = origin_world_;
+            ray.direction = p.direction_world;
+            ray.time_s = frame_start_s_ + time_at(line, az);
+            ray.max_range_m = max_range_m_;
+            rays.push_back(ray);
+        }
+    }
+    hits.resize(rays.size());
+    traced_.trace(rays, hits);
+    slot.rays = static_cast<int>(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        Point& p = slot.points[i];
+        p.hit = hits[i].has_value();
+        if (!p.hit) continue;
+        const raytrace::Hit& h = *hits[i];
+        p.range_m = h.range_m;
+        p.object_id = h.object_id;
+        p.point_world = origin_world_ + h.range_m * p.direction_world;
+        p.normal_world = h.normal_world;
+        p.unit_echo_j = integrator_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0);
+    }
+}
+
+std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t object_id, const FootprintRect& outline,
+                                            BeamEchoes& out) const {
+    const auto target = target_index_.find(object_id);
+    if (target == target_index_.end()) return std::nullopt;
+    const int line = static_cast<int>(aim.cell) / columns_;
+    int rays = 0;
+    const Slot& slot = ensure(line, target->second, object_id, rays);
+    out.rays += rays;
+    if (slot.points.empty()) return std::nullopt;
+    // The lattice must hold the beam's view of the outline: its corners, in raster angles (both
+    // are the same box, padded alike, or clipped alike to the footprint's reach, found by
+    // different roundings).
+    for (const double x : {outline.x_lo, outline.x_hi}) {
+        for (const double y : {outline.y_lo, outline.y_hi}) {
+            const Eigen::Vector2d a = raster_angles(aim.world_from_beam * integrator_.in_beam(x, y));
+            if (a.x() < slot.az_lo - kSlack_rad || a.x() > slot.az_hi + kSlack_rad || a.y() < slot.el_lo - kSlack_rad ||
+                a.y() > slot.el_hi + kSlack_rad)
+                return std::nullopt;
+        }
+    }
+    // Each sub-ray inside the outline and the truncation carries the beam's energy density there
+    // (the truncated Gaussian's: irradiance x 2 / (pi w^2) / captured) times its stratum's area.
+    // Not renormalised to the outline's share: where the outline reaches past the truncation that
+    // share is not the sampled part's, and the sum is the integral's stratified estimate anyway.
+    const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
+    const double w = footprint_.waist_rad();
+    const double density = 2.0 / (std::numbers::pi * w * w) * footprint_.cell_weight(1.0, 1.0);
+    thread_local std::vector<std::pair<const Point*, double>> kept;
+    kept.clear();
+    double total = 0.0;
+    for (const Point& p : slot.points) {
+        const Eigen::Vector3d v = beam_from_world * p.direction_world;
+        if (!(v.x() > 0.0)) continue;
+        const double x = small_atan(v.y() / v.x()), y = small_atan(v.z() / v.x()) / ellipticity_;
+        if (!footprint_.contains(outline, x, y) || !footprint_.within_truncation(x, y)) continue;
+        const double weight = integrator_.irradiance(x, y) * p.area * density;
+        kept.emplace_back(&p, weight);
+        total += weight;
+    }
+    if (static_cast<double>(kept.size()) < kMinShareOfBudget * grid_base_ * grid_base_ || !(total > 0.0)) return std::nullopt;
+    for (const auto& [p, weight] : kept)
+        if (p->hit) out.surface.push_back({p->range_m, weight, p->unit_echo_j * weight, 0.0, p->object_id, p->point_world, p->normal_world, 0});
+    return total;
+}
+
+}  // namespace ladarsim::sensor_model

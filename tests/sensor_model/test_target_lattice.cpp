@@ -1,0 +1,105 @@
+// TargetLattice: the beams of a line that hold a bright lone target share one stratified lattice
+// of sub-rays over it, and each weighs the target as its own truncated Gaussian does.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+#include <Eigen/Geometry>
+
+#include "ladarsim/sensor_model/frame_renderer.h"
+#include "../support/closed_form_scenario.h"
+#include "../support/scene_builders.h"
+
+using namespace ladarsim;
+using namespace ladarsim::sensor_model;
+using namespace ladarsim::test;
+
+namespace {
+
+/// The share of the beam (its truncated Gaussian, normalised over the truncation) falling inside
+/// the footprint rectangle [x_lo, x_hi] x [y_lo, y_hi], by a 400 x 400 midpoint rule: no part of
+/// the integrator's code.
+double share_in(const FootprintRect& r, double waist_rad, double max_offset_rad) {
+    constexpr int kSteps = 400;
+    const double dx = (r.x_hi - r.x_lo) / kSteps, dy = (r.y_hi - r.y_lo) / kSteps;
+    double sum = 0.0;
+    for (int i = 0; i < kSteps; ++i) {
+        for (int j = 0; j < kSteps; ++j) {
+            const double x = r.x_lo + (i + 0.5) * dx, y = r.y_lo + (j + 0.5) * dy;
+            if (x * x + y * y <= max_offset_rad * max_offset_rad) sum += std::exp(-2.0 * (x * x + y * y) / (waist_rad * waist_rad));
+        }
+    }
+    const double captured = -std::expm1(-2.0 * max_offset_rad * max_offset_rad / (waist_rad * waist_rad));
+    return sum * dx * dy * 2.0 / (M_PI * waist_rad * waist_rad) / captured;
+}
+
+}  // namespace
+
+TEST_CASE("beams of a line share one lattice over a bright lone target, each weighing it as its Gaussian does", "[footprint][targets]") {
+    // A 0.3 m plate (reflectance 0.5) facing the sensor 1 km out, on a strip of the paper's raster
+    // (noise off): about 15 beams of each of 3 lines hold it. Each beam's echo against the closed
+    // form (the plate's share of its footprint, integrated here on a fine grid, times the extended
+    // target's echo). Measured over the beams getting a tenth of the strongest one's echo or more:
+    // 0.7 % mean and 1.5 % worst relative error, 1,408 rays traced in all (0.8 % and 1.7 %, 1,152
+    // rays, with another seed); each beam sampling the plate with a grid of its own (before the
+    // lattice): 0.3 % and 2.2 %, 11,392 rays.
+    Scenario s = closed_form_scenario();
+    set_raster(s.sensor, 32, 8, 0.5 * 32 / 150, 0.5 * 8 / 20);
+    constexpr double kRange = 1000.0, kSide = 0.3, kReflectance = 0.5;
+    s.scene.objects.push_back(object_at(1, plate(kSide, kReflectance), fixed_at(kRange, 0.0, 0.0)));
+    const std::uint64_t seed = GENERATE(1, 2);
+    s.render.seed = seed;
+    FrameRenderer renderer(s);
+    const Frame frame = renderer.render(0);
+    std::map<int, double> seen;  // photo-electrons by raster cell
+    for (const Return& r : frame.returns)
+        if (r.object_id == 1) seen[r.row * 1000 + r.column] += r.intensity;
+
+    const ScanPattern& raster = *s.sensor.scan;
+    const Transmitter& t = s.sensor.transmitter;
+    const double waist = 0.5 * t.divergence_mrad * 1e-3, ellipticity = t.divergence_el_mrad / t.divergence_mrad;
+    const double max_offset = s.render.footprint_truncation * waist;
+    const double full = extended_target_photoelectrons(s.sensor, kReflectance, 1.0, kRange);
+    std::map<int, double> expected;  // by raster cell
+    for (int row = 0; row < raster.rows(); ++row) {
+        for (int step = 0; step < raster.columns(); ++step) {
+            const RasterBeam b = raster.beam(row, step);
+            const Eigen::Matrix3d beam_from_world =
+                (Eigen::AngleAxisd(b.az_offset_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-b.el_offset_rad, Eigen::Vector3d::UnitY()))
+                    .toRotationMatrix()
+                    .transpose() *
+                s.mount.world_from_sensor().linear().transpose();
+            FootprintRect rect{1e9, -1e9, 1e9, -1e9};
+            for (const double y : {-0.5 * kSide, 0.5 * kSide}) {
+                for (const double z : {-0.5 * kSide, 0.5 * kSide}) {
+                    const Eigen::Vector3d v = beam_from_world * (Eigen::Vector3d(kRange, y, z) - s.mount.position_world);
+                    const double x_off = std::atan2(v.y(), v.x()), y_off = std::atan2(v.z(), v.x()) / ellipticity;
+                    rect = {std::min(rect.x_lo, x_off), std::max(rect.x_hi, x_off), std::min(rect.y_lo, y_off), std::max(rect.y_hi, y_off)};
+                }
+            }
+            const double e = share_in(rect, waist, max_offset) * full;
+            if (e > 0.0) expected[row * 1000 + b.column] = e;
+        }
+    }
+    double strongest = 0.0;
+    for (const auto& [cell, e] : expected) strongest = std::max(strongest, e);
+    int beams = 0;
+    double error_sum = 0.0, worst = 0.0;
+    for (const auto& [cell, e] : expected) {
+        if (e < 0.1 * strongest) continue;
+        const auto it = seen.find(cell);
+        const double error = std::abs((it == seen.end() ? 0.0 : it->second) / e - 1.0);
+        ++beams;
+        error_sum += error;
+        worst = std::max(worst, error);
+    }
+    const std::uint64_t holding = expected.size();
+    INFO("seed " << seed << ": " << beams << " beams get a tenth of the strongest one's echo or more (" << holding << " some of it); relative error mean "
+                 << error_sum / beams << ", worst " << worst << "; " << renderer.rays_last_frame() << " rays");
+    REQUIRE(beams >= 20);
+    CHECK(error_sum / beams < 0.015);
+    CHECK(worst < 0.04);
+    // Shared: far fewer rays than a grid of 256 a beam (the probes trace one a beam).
+    CHECK(renderer.rays_last_frame() < 64 * holding);
+}
