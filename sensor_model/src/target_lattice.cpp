@@ -171,10 +171,11 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
     rays.clear();
     const std::size_t target = target_index_.at(object_id);
+    const double w = footprint_.waist_rad();
+    const double axis_peak = std::sqrt(2.0 / std::numbers::pi) / w;  ///< the axis Gaussian's density at its centre
     for (int j = 0; j < grid_base_; ++j) {
         auto el_at = [&](double cdf) { return line.el_rad + ellipticity_ * footprint_.axis_offset(cdf); };
-        const double cell_lo = el_at(cdf_lo + j * cdf_step), cell_hi = el_at(cdf_lo + (j + 1) * cdf_step);
-        for (int i = 0; i < columns; ++i) {
+            for (int i = 0; i < columns; ++i) {
             const std::uint32_t index = static_cast<std::uint32_t>(j * columns + i);
             double ja = 0.5, je = 0.5;
             if (jitter_) {
@@ -187,8 +188,12 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             const double el = el_at(cdf_lo + (j + je) * cdf_step);
             Point p;
             p.direction_world = direction_world(az, el);
-            // In footprint offsets: azimuth foreshortened by the line's elevation, elevation over the ellipticity.
-            p.area = step_az * std::cos(line.el_rad) * (cell_hi - cell_lo) / ellipticity_;
+            // Drawn uniformly along the line in footprint offsets (azimuth foreshortened by the
+            // line's elevation), and across it as the line's Gaussian: the stratum's probability
+            // over the density it was drawn with (that Gaussian's, relative to its peak, there).
+            const double y = (el - line.el_rad) / ellipticity_;
+            p.per_irradiance = step_az * std::cos(line.el_rad) * cdf_step * axis_peak * footprint_.cell_weight(1.0, 1.0) /
+                               std::exp(-2.0 * y * y / (w * w));
             slot.points.push_back(p);
             raytrace::Ray ray;
             ray.origin_world = origin_world_;
@@ -234,13 +239,11 @@ std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t ob
                 return std::nullopt;
         }
     }
-    // Each sub-ray inside the outline and the truncation carries the beam's energy density there
-    // (the truncated Gaussian's: irradiance x 2 / (pi w^2) / captured) times its stratum's area.
-    // Not renormalised to the outline's share: where the outline reaches past the truncation that
-    // share is not the sampled part's, and the sum is the integral's stratified estimate anyway.
+    // Each sub-ray inside the outline and the truncation carries the beam's irradiance there over
+    // the density it was drawn with: a stratified estimate of the outline's share, unbiased for
+    // every beam of the line (not renormalised to the outline's share: where the outline reaches
+    // past the truncation, that share is not the sampled part's).
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
-    const double w = footprint_.waist_rad();
-    const double density = 2.0 / (std::numbers::pi * w * w) * footprint_.cell_weight(1.0, 1.0);
     thread_local std::vector<std::pair<const Point*, double>> kept;
     kept.clear();
     double total = 0.0;
@@ -249,7 +252,7 @@ std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t ob
         if (!(v.x() > 0.0)) continue;
         const double x = small_atan(v.y() / v.x()), y = small_atan(v.z() / v.x()) / ellipticity_;
         if (!footprint_.contains(outline, x, y) || !footprint_.within_truncation(x, y)) continue;
-        const double weight = integrator_.irradiance(x, y) * p.area * density;
+        const double weight = integrator_.irradiance(x, y) * p.per_irradiance;
         kept.emplace_back(&p, weight);
         total += weight;
     }

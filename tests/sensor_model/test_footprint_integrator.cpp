@@ -522,9 +522,9 @@ TEST_CASE("a bright lone drone: its energy as 4096 sub-rays weigh it, in all and
     // average where a second reference (another seed) is off by 9.6 % (11.6 % with a third seed:
     // a drone's thin parts scatter even 4096 sub-rays). Sampled as one stratified grid of that
     // budget: -0.4 % and 10.3 %. The beams of a line now share one stratified lattice over it
-    // (TargetLattice): a strong beam's error 9.7 %, and one render's total scatters by about 1 %
-    // between seeds (the ~15 beams of a line weigh the same few hundred sub-rays), so the total's
-    // bias is judged on the mean of eight renders: +0.2 %.
+    // (TargetLattice): a strong beam's error 9.6 %, and one render's total scatters by about 1 %
+    // between seeds (the ~15 beams of a line weigh the same few hundred sub-rays; this one +1.1 %),
+    // so the total's bias is judged on the mean of eight renders: -0.1 %.
     Scenario s = closed_form_scenario();
     set_raster(s.sensor, 48, 20, 0.5 * 48 / 150, 0.5);
     auto model = std::make_shared<const scene::Model>(scene::make_quadcopter());

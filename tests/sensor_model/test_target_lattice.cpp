@@ -40,10 +40,12 @@ TEST_CASE("beams of a line share one lattice over a bright lone target, each wei
     // A 0.3 m plate (reflectance 0.5) facing the sensor 1 km out, on a strip of the paper's raster
     // (noise off): about 15 beams of each of 3 lines hold it. Each beam's echo against the closed
     // form (the plate's share of its footprint, integrated here on a fine grid, times the extended
-    // target's echo). Measured over the beams getting a tenth of the strongest one's echo or more:
-    // 0.7 % mean and 1.5 % worst relative error, 1,408 rays traced in all (0.8 % and 1.7 %, 1,152
-    // rays, with another seed); each beam sampling the plate with a grid of its own (before the
-    // lattice): 0.3 % and 2.2 %, 11,392 rays.
+    // target's echo). Measured over the beams getting a tenth of the strongest one's echo or more,
+    // for seeds 1 to 12: their summed echo within 0.023 % of the closed form's, a beam's relative
+    // error 0.09-0.47 % on average and at most 1.8 %, 1,152-1,408 rays traced in all; each beam
+    // sampling the plate with a grid of its own (before the lattice): 0.3 % and 2.2 %, 11,392 rays.
+    // (The first lattice weighed its sub-rays by the irradiance at them times their strata's
+    // area, but drew them across the line by the line's Gaussian: +0.2 to +1.4 % for every seed.)
     Scenario s = closed_form_scenario();
     set_raster(s.sensor, 32, 8, 0.5 * 32 / 150, 0.5 * 8 / 20);
     constexpr double kRange = 1000.0, kSide = 0.3, kReflectance = 0.5;
@@ -85,21 +87,26 @@ TEST_CASE("beams of a line share one lattice over a bright lone target, each wei
     double strongest = 0.0;
     for (const auto& [cell, e] : expected) strongest = std::max(strongest, e);
     int beams = 0;
+    double summed = 0.0, summed_expected = 0.0;
     double error_sum = 0.0, worst = 0.0;
     for (const auto& [cell, e] : expected) {
         if (e < 0.1 * strongest) continue;
         const auto it = seen.find(cell);
-        const double error = std::abs((it == seen.end() ? 0.0 : it->second) / e - 1.0);
+        const double got = it == seen.end() ? 0.0 : it->second;
+        const double error = std::abs(got / e - 1.0);
+        summed += got;
+        summed_expected += e;
         ++beams;
         error_sum += error;
         worst = std::max(worst, error);
     }
     const std::uint64_t holding = expected.size();
-    INFO("seed " << seed << ": " << beams << " beams get a tenth of the strongest one's echo or more (" << holding << " some of it); relative error mean "
+    INFO("seed " << seed << ": " << beams << " beams get a tenth of the strongest one's echo or more (" << holding << " some of it); summed " << summed / summed_expected - 1.0 << ", relative error mean "
                  << error_sum / beams << ", worst " << worst << "; " << renderer.rays_last_frame() << " rays");
     REQUIRE(beams >= 20);
-    CHECK(error_sum / beams < 0.015);
-    CHECK(worst < 0.04);
+    CHECK(std::abs(summed / summed_expected - 1.0) < 0.002);
+    CHECK(error_sum / beams < 0.01);
+    CHECK(worst < 0.03);
     // Shared: far fewer rays than a grid of 256 a beam (the probes trace one a beam).
     CHECK(renderer.rays_last_frame() < 64 * holding);
 }

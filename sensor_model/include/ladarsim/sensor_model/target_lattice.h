@@ -65,7 +65,7 @@ private:
         Eigen::Vector3f normal_world = Eigen::Vector3f::Zero();
         double range_m = 0.0;
         double unit_echo_j = 0.0;
-        double area = 0.0;  ///< of its stratum, in raster angles (rad^2)
+        double per_irradiance = 0.0;  ///< the share of the beam it carries per unit of the beam's irradiance there
         std::uint32_t object_id = 0;
         bool hit = false;
     };
