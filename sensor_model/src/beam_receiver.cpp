@@ -80,7 +80,9 @@ BeamReceiver::BeamReceiver(const Sensor& sensor, const Atmosphere& atmosphere, b
       extinction_per_m_(atmosphere.extinction_per_m(sensor.transmitter.wavelength_nm)),
       apd_(sensor.receiver, solar_background_power_w(sensor.optics, atmosphere)),
       waveform_(apd_, sensor.transmitter.pulse_width_ns * 1e-9),
-      unambiguous_range_m_(sensor.transmitter.unambiguous_range_m()) {}
+      unambiguous_range_m_(sensor.transmitter.unambiguous_range_m()),
+      false_alarms_per_gate_(apd_.false_alarm_rate_hz() * sensor.range_gate_s()),
+      no_false_alarm_(std::exp(-false_alarms_per_gate_)) {}
 
 double BeamReceiver::transmission(double range_m) const { return std::exp(-extinction_per_m_ * range_m); }
 
@@ -115,7 +117,7 @@ DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSeque
 void BeamReceiver::add_false_alarms(std::vector<DetectedReturn>& returns, const BeamKey& key) const {
     RandomSequence draws(key.seed, RandomStream::false_alarms, key.frame, key.beam);
     const double gate_s = sensor_.range_gate_s();
-    const int count = draws.poisson(apd_.false_alarm_rate_hz() * gate_s);
+    const int count = draws.poisson(false_alarms_per_gate_, no_false_alarm_);
     const double tnr = apd_.threshold_to_noise();
     for (int i = 0; i < count; ++i) {
         DetectedReturn r{};

@@ -29,8 +29,17 @@ double RandomSequence::uniform() {
 }
 
 double RandomSequence::normal() {
+    // Box-Muller gives two independent normals from two uniforms: the second is kept for the next
+    // call (a beam draws several: speckle, detector noise and range jitter, a waveform's spectrum).
+    if (spare_) {
+        const double z = *spare_;
+        spare_.reset();
+        return z;
+    }
     const double u1 = uniform(), u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+    const double r = std::sqrt(-2.0 * std::log(u1)), angle = 2.0 * std::numbers::pi * u2;
+    spare_ = r * std::sin(angle);
+    return r * std::cos(angle);
 }
 
 double RandomSequence::gamma_unit_mean(double k) {
@@ -53,9 +62,11 @@ double RandomSequence::gamma_unit_mean(double k) {
     }
 }
 
-int RandomSequence::poisson(double mean) {
+int RandomSequence::poisson(double mean) { return poisson(mean, std::exp(-mean)); }
+
+int RandomSequence::poisson(double mean, double exp_minus_mean) {
     const double u = uniform();
-    double p = std::exp(-mean), cumulative = p;
+    double p = exp_minus_mean, cumulative = p;
     int n = 0;
     while (u > cumulative && n < 10'000) {
         ++n;

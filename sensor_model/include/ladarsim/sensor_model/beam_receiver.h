@@ -72,6 +72,8 @@ private:
     ApdReceiver apd_;
     WaveformReceiver waveform_;
     double unambiguous_range_m_;
+    double false_alarms_per_gate_;  ///< their mean count in one range gate, and exp(-it): drawn every beam
+    double no_false_alarm_;
 };
 
 }  // namespace ladarsim::sensor_model

@@ -3,6 +3,7 @@
 // so results do not depend on thread count or on the order in which beams are processed.
 #include <array>
 #include <cstdint>
+#include <optional>
 
 namespace ladarsim::sensor_model {
 
@@ -37,6 +38,8 @@ public:
     double gamma_unit_mean(double k);
     /// Poisson distributed with the given mean (inversion; for the small means of false alarms).
     int poisson(double mean);
+    /// The same, exp(-mean) given (a mean drawn for every beam).
+    int poisson(double mean, double exp_minus_mean);
 
 private:
     std::uint64_t seed_;
@@ -46,6 +49,7 @@ private:
     std::uint32_t block_;
     std::array<double, 4> buffer_{};
     int used_ = 4;
+    std::optional<double> spare_;  ///< Box-Muller's second normal
 };
 
 }  // namespace ladarsim::sensor_model
