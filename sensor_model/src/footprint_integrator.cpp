@@ -66,7 +66,9 @@ constexpr int kFreePaths = 8;
 /// first cells' edges: in the bench's default scenario the grid gives the drone's energy -0.4 %
 /// against -1.9 % refined, and such a beam costs half the cycles (115 k against 206-240 k).
 /// Several targets together keep refinement: one rectangle around a drone among birds is mostly
-/// empty, and the seeds find the drone in it.
+/// empty, and the seeds find the drone in it. (Where its line's TargetLattice holds a lone target,
+/// bright or dim, the beam takes that instead: this grid is for a footprint whose edge crosses the
+/// target, or a raster whose footprints do not overlap along a line.)
 constexpr double kBrightTargetThresholds = 3.0;
 /// Random-draw numbers of the cells: every (splits along x, splits along y, i, j) its own.
 constexpr std::uint32_t cells_along(int base, int splits) { return static_cast<std::uint32_t>(base) << splits; }
@@ -583,7 +585,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         const bool bright_lone = targets_met == 1 && brightest_j >= kBrightTargetThresholds * threshold_energy_j(0.0);
         double sampled = 0.0;
         const std::optional<double> shared =
-            bright_lone && !media && target_lattice_ ? target_lattice_->gather(aim, lone_id, *targets, out) : std::nullopt;
+            targets_met == 1 && !media && target_lattice_ ? target_lattice_->gather(aim, lone_id, *targets, out) : std::nullopt;
         if (shared) {
             sampled = *shared;  // its line's sub-rays over it
         } else {

@@ -98,8 +98,9 @@ struct BeamEchoes {
 ///    probe and the sub-ray of its cell, disagree (another object, another surface, nothing, another
 ///    medium, or half the echo), until what the receiver reports is settled: each return's energy known to
 ///    `footprint_tolerance` of itself, or of its (stretched) pulse's threshold when weaker
-///    (docs/sensor.md, "Footprint and returns"). A lone target bright enough to spend the outline's
-///    budget anyway is one grid of it instead; a footprint over a recorded map takes brute force.
+///    (docs/sensor.md, "Footprint and returns"). A lone target takes its line's shared sub-rays over
+///    it (TargetLattice) where they hold it, else, bright enough to spend the outline's budget
+///    anyway, one grid of it; a footprint over a recorded map takes brute force.
 class FootprintIntegrator {
 public:
     FootprintIntegrator(const Scenario& scenario, const raytrace::TracedScene& traced, const BeamReceiver& receiver);
@@ -118,8 +119,8 @@ public:
     /// Where a footprint over a recorded map takes brute force (without media), it takes the
     /// lattice's shared sub-rays instead of tracing its own (null: its own). Set before rendering.
     void share_sub_rays(const SubRayLattice* lattice) { lattice_ = lattice; }
-    /// Where a bright lone target is sampled (without media), its line's shared sub-rays over it
-    /// instead of a grid of its own where the lattice holds it (null: its own). Set before rendering.
+    /// Where a lone target is sampled (without media), its line's shared sub-rays over it instead
+    /// of its own where the lattice holds it (null: its own). Set before rendering.
     void share_target_sub_rays(const TargetLattice* lattice) { target_lattice_ = lattice; }
     /// Strata along each axis of a bright lone target's grid (its square ~ map_samples()).
     int grid_base() const { return grid_base_; }

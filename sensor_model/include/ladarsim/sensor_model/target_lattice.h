@@ -1,5 +1,5 @@
 #pragma once
-// Sub-rays over a moving target shared by the footprints of one raster line that meet it (docs/sensor.md,
+// Sub-rays over a target shared by the footprints of one raster line that meet it (docs/sensor.md,
 // "Footprint and returns", step 4).
 #include <atomic>
 #include <cstdint>
@@ -20,11 +20,11 @@ namespace ladarsim::sensor_model {
 
 /// For each raster line and target, one stratified lattice of sub-rays over the target's outline,
 /// in the raster's angles: equal-energy strata of the line's beams in elevation (every beam of a
-/// line has the same elevation), uniform ones in azimuth. Every beam of the line whose footprint
-/// holds the whole of a bright lone target (issue: the paper's drone; see
-/// FootprintIntegrator::integrate) takes the lattice's sub-rays inside its own view of the
-/// outline, each weighted by its irradiance over the lattice's density, instead of tracing a grid
-/// of its own: the ~15 footprints of a line that overlap a drone share one set of rays.
+/// line has the same elevation), uniform ones in azimuth. Every beam of the line whose cone meets
+/// that target alone (no other target, no medium; FootprintIntegrator::integrate) takes the
+/// lattice's sub-rays inside its own view of the outline, each carrying its irradiance over the
+/// density it was drawn with, instead of sampling the outline itself: the ~15 footprints of a line
+/// that overlap a drone share one set of rays.
 ///
 /// A sub-ray leaves at the time the line's beam pointing closest to it in azimuth fires, so the
 /// target is where that beam sees it: a beam using it is at most a footprint's width of the line
@@ -41,7 +41,7 @@ public:
     static bool worthwhile(const Footprint& footprint, const ScanPattern& raster);
 
     /// Its strata: as many along each axis of a footprint's view of a target as the integrator's
-    /// grid for a bright lone target has (FootprintIntegrator::grid_base()).
+    /// grid for a lone target has (FootprintIntegrator::grid_base()).
     TargetLattice(const raytrace::TracedScene& traced, const ScanPattern& raster, const FootprintIntegrator& integrator,
                   const Eigen::Vector3d& origin_world, const Eigen::Matrix3d& world_from_sensor, double max_range_m, std::uint64_t seed,
                   bool jitter);
