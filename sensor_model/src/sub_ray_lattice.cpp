@@ -132,17 +132,7 @@ int SubRayLattice::trace_tile(std::size_t t) const {
     }
     hits.resize(rays.size());
     traced_.trace_static(rays, hits);
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        Point& point = points_[index[i]];
-        point.hit = hits[i].has_value();
-        if (!point.hit) continue;
-        const raytrace::Hit& h = *hits[i];
-        point.range_m = h.range_m;
-        point.object_id = h.object_id;
-        point.point_world = origin_world_ + h.range_m * point.direction_world;
-        point.normal_world = h.normal_world;
-        point.unit_echo_j = unit_echo_j_(h);
-    }
+    for (std::size_t i = 0; i < rays.size(); ++i) points_[index[i]].met(hits[i], origin_world_, unit_echo_j_);
     return static_cast<int>(rays.size());
 }
 

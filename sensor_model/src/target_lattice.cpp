@@ -206,17 +206,10 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     hits.resize(rays.size());
     traced_.trace(rays, hits);
     slot.rays = static_cast<int>(rays.size());
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        Point& p = slot.points[i];
-        p.hit = hits[i].has_value();
-        if (!p.hit) continue;
-        const raytrace::Hit& h = *hits[i];
-        p.range_m = h.range_m;
-        p.object_id = h.object_id;
-        p.point_world = origin_world_ + h.range_m * p.direction_world;
-        p.normal_world = h.normal_world;
-        p.unit_echo_j = integrator_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0);
-    }
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        slot.points[i].met(hits[i], origin_world_, [&](const raytrace::Hit& h) {
+            return integrator_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0);
+        });
 }
 
 std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t object_id, const FootprintRect& outline,

@@ -14,6 +14,7 @@
 #include "ladarsim/sensor_model/footprint.h"
 #include "ladarsim/sensor_model/footprint_integrator.h"
 #include "ladarsim/sensor_model/gimbal.h"
+#include "ladarsim/sensor_model/lattice_sub_ray.h"
 #include "ladarsim/sensor_model/scan_pattern.h"
 
 namespace ladarsim::sensor_model {
@@ -69,15 +70,7 @@ public:
     std::size_t size() const { return points_.size(); }
 
 private:
-    struct Point {
-        Eigen::Vector3d direction_world;
-        Eigen::Vector3d point_world;
-        Eigen::Vector3f normal_world;
-        double range_m = 0.0;
-        double unit_echo_j = 0.0;
-        std::uint32_t object_id = 0;
-        bool hit = false;
-    };
+    using Point = LatticeSubRay;
     /// Traces tile `t` if no thread has yet; waits for it if another is. Returns the rays traced.
     int ensure_tile(std::size_t t) const;
     int trace_tile(std::size_t t) const;

@@ -14,6 +14,7 @@
 #include "ladarsim/sensor_model/footprint.h"
 #include "ladarsim/sensor_model/footprint_integrator.h"
 #include "ladarsim/sensor_model/gimbal.h"
+#include "ladarsim/sensor_model/lattice_sub_ray.h"
 #include "ladarsim/sensor_model/scan_pattern.h"
 
 namespace ladarsim::sensor_model {
@@ -59,15 +60,8 @@ public:
     std::optional<double> gather(const BeamAim& aim, std::uint32_t object_id, const FootprintRect& outline, BeamEchoes& out) const;
 
 private:
-    struct Point {
-        Eigen::Vector3d direction_world = Eigen::Vector3d::Zero();
-        Eigen::Vector3d point_world = Eigen::Vector3d::Zero();
-        Eigen::Vector3f normal_world = Eigen::Vector3f::Zero();
-        double range_m = 0.0;
-        double unit_echo_j = 0.0;
+    struct Point : LatticeSubRay {
         double per_irradiance = 0.0;  ///< the share of the beam it carries per unit of the beam's irradiance there
-        std::uint32_t object_id = 0;
-        bool hit = false;
     };
     struct Line {
         double el_rad = 0.0;              ///< the line's elevation offset
