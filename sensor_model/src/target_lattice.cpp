@@ -16,7 +16,12 @@ namespace {
 
 /// A beam takes the lattice only where at least this share of its own grid's budget falls inside
 /// its view of the outline (a footprint whose edge crosses the target sees a sliver of the line's
-/// lattice; it samples the sliver itself).
+/// lattice; it samples the sliver itself). Measured in the default scenario (one thread, 300
+/// frames; its bright drone beams only, before the dim ones took the lattice too) and on the
+/// quadcopter at 300 m of the tests (a strong beam's mean error against 4096 sub-rays; a second
+/// reference: 9.6 %): at 0.5, 2,708 of 10,788 beams sampled the outline themselves, 591 k beams/s,
+/// 10.7 %; at 0.25, 1,234, 610 k, 9.3 %; at 0.1, 509, 640 k, 9.7 %. A sliver's own grid was no
+/// better than the lattice's sub-rays in it.
 constexpr double kMinShareOfBudget = 0.1;
 /// A lattice spans at most this many footprint widths along its line (a target filling the field
 /// at close range): beyond, its beams sample it themselves.
