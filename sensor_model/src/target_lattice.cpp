@@ -132,10 +132,13 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     const double t_first = frame_start_s_ + std::min(line.time_by_az.front().second, line.time_by_az.back().second);
     const double t_last = frame_start_s_ + std::max(line.time_by_az.front().second, line.time_by_az.back().second);
     thread_local std::vector<raytrace::ObjectBounds> objects;
+    Eigen::Vector3d centre_first = Eigen::Vector3d::Zero(), centre_last = Eigen::Vector3d::Zero();
     for (const double t : {t_first, 0.5 * (t_first + t_last), t_last}) {
         traced_.object_bounds(t, objects);
         const auto b = std::find_if(objects.begin(), objects.end(), [&](const raytrace::ObjectBounds& o) { return o.object_id == object_id; });
         if (b == objects.end()) return;
+        if (t == t_first) centre_first = b->centre_world;
+        if (t == t_last) centre_last = b->centre_world;
         for (int k = 0; k < 8; ++k) {
             const Eigen::Vector3d corner = b->box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
             const Eigen::Vector3d v = world_from_gimbal_.transpose() * (b->world_from_model * corner.homogeneous() - origin_world_);
@@ -171,6 +174,16 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     slot.az_hi = az_hi;
     slot.el_lo = el_lo;
     slot.el_hi = el_hi;
+    // Moved to a beam's time t_b, a point met at azimuth a (left at t(a) = t0 + s a) lies at
+    // a + w (t_b - t(a)), w the target's angular speed in azimuth: the strata's azimuths stretch
+    // by d/da = 1 - w s, and their density by its inverse.
+    if (t_last > t_first) {
+        slot.velocity_world = (centre_last - centre_first) / (t_last - t_first);
+        const double w = (raster_angles(centre_last - origin_world_).x() - raster_angles(centre_first - origin_world_).x()) / (t_last - t_first);
+        const auto& ends = line.time_by_az;
+        if (ends.back().first > ends.front().first)
+            slot.stretch = 1.0 - w * (ends.back().second - ends.front().second) / (ends.back().first - ends.front().first);
+    }
 
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
@@ -204,6 +217,7 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             ray.origin_world = origin_world_;
             ray.direction = p.direction_world;
             ray.time_s = frame_start_s_ + time_at(line, az);
+            slot.points.back().time_s = ray.time_s;
             ray.max_range_m = max_range_m_;
             rays.push_back(ray);
         }
@@ -242,21 +256,33 @@ std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t ob
     // every beam of the line (not renormalised to the outline's share: where the outline reaches
     // past the truncation, that share is not the sampled part's).
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
-    thread_local std::vector<std::pair<const Point*, double>> kept;
+    struct Kept {
+        const Point* point;
+        double weight;
+        Eigen::Vector3d at_beam_time;  ///< where the beam meets what the sub-ray met
+    };
+    thread_local std::vector<Kept> kept;
     kept.clear();
     double total = 0.0;
     for (const Point& p : slot.points) {
-        const Eigen::Vector3d v = beam_from_world * p.direction_world;
+        // What met the target, moved to where the target stood when this beam fired.
+        const bool moved = p.hit && p.object_id == object_id;
+        const Eigen::Vector3d at = moved ? Eigen::Vector3d(p.point_world + slot.velocity_world * (aim.time_s - p.time_s)) : p.point_world;
+        const Eigen::Vector3d v = beam_from_world * (moved ? Eigen::Vector3d(at - origin_world_) : p.direction_world);
         if (!(v.x() > 0.0)) continue;
         const double x = small_atan(v.y() / v.x()), y = small_atan(v.z() / v.x()) / ellipticity_;
         if (!footprint_.contains(outline, x, y) || !footprint_.within_truncation(x, y)) continue;
-        const double weight = integrator_.irradiance(x, y) * p.per_irradiance;
-        kept.emplace_back(&p, weight);
+        const double weight = integrator_.irradiance(x, y) * p.per_irradiance * (moved ? slot.stretch : 1.0);
+        kept.push_back({&p, weight, at});
         total += weight;
     }
     if (static_cast<double>(kept.size()) < kMinShareOfBudget * grid_base_ * grid_base_ || !(total > 0.0)) return std::nullopt;
-    for (const auto& [p, weight] : kept)
-        if (p->hit) out.surface.push_back({p->range_m, weight, p->unit_echo_j * weight, 0.0, p->object_id, p->point_world, p->normal_world, 0});
+    for (const Kept& k : kept) {
+        const Point& p = *k.point;
+        if (!p.hit) continue;
+        const double range = p.object_id == object_id ? (k.at_beam_time - origin_world_).norm() : p.range_m;
+        out.surface.push_back({range, k.weight, p.unit_echo_j * k.weight, 0.0, p.object_id, k.at_beam_time, p.normal_world, 0});
+    }
     return total;
 }
 
