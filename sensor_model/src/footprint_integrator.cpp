@@ -552,7 +552,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     thread_local std::vector<ProbeHit> seed_hits;
     thread_local std::vector<raytrace::Ray> seed_rays;
     thread_local std::vector<std::optional<raytrace::Hit>> seed_results;
+    bool seeded = false;
     auto add_seeds = [&] {
+        if (std::exchange(seeded, true)) return;
         seeds_at.clear();
         for (const auto& [b, shape] : with_seeds) seed_offsets(*b, *shape, beam_from_world, seeds_at);
         if (seeds_at.empty()) return;
@@ -606,7 +608,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         }
         const double rest = 1.0 - sampled;
         if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed)) {
-            if (bright_lone) add_seeds();
+            add_seeds();  // (where the target's own sampling did not ask them)
             rest_region.reset(footprint_, footprint_.square(), targets, rest, kComplementSamples);
             Region* const second[] = {&rest_region};
             refine(aim, second, witnesses, media, frame, out, Unsettled::map);

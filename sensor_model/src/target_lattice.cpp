@@ -29,6 +29,9 @@ constexpr double kMaxFootprintsAlong = 16.0;
 /// How far a beam's view of an outline may reach past the lattice's bounds and still count as held:
 /// rounding (a footprint is 1e-3 rad across; a sliver this wide holds 1e-5 of it).
 constexpr double kSlack_rad = 1e-9;
+/// Below this stretch of its strata by the target's motion (1 - w dt/da, see trace_slot) a line's
+/// lattice is not used: the target crosses the field at half the scan's own angular speed.
+constexpr double kMinStretch = 0.5;
 
 }  // namespace
 
@@ -89,15 +92,16 @@ Eigen::Vector2d TargetLattice::raster_angles(const Eigen::Vector3d& direction_wo
     return {std::atan2(v.y(), v.x()), std::atan2(v.z(), std::hypot(v.x(), v.y()))};
 }
 
-double TargetLattice::time_at(const Line& line, double az) const {
-    // Linear between the two beams either side in azimuth (a galvo line is a ramp in time).
+std::pair<double, double> TargetLattice::time_at(const Line& line, double az) const {
+    // Linear between the two beams either side in azimuth (a galvo line is a ramp in time), held
+    // beyond its first and last.
     const auto& t = line.time_by_az;
     const auto above = std::lower_bound(t.begin(), t.end(), std::make_pair(az, -1e300));
-    if (above == t.begin()) return t.front().second;
-    if (above == t.end()) return t.back().second;
+    if (above == t.begin()) return {t.front().second, 0.0};
+    if (above == t.end()) return {t.back().second, 0.0};
     const auto below = above - 1;
-    const double f = (az - below->first) / (above->first - below->first);
-    return below->second + f * (above->second - below->second);
+    const double slope = (above->second - below->second) / (above->first - below->first);
+    return {below->second + (az - below->first) * slope, slope};
 }
 
 const TargetLattice::Slot& TargetLattice::ensure(int line, std::size_t target, std::uint32_t object_id, int& rays) const {
@@ -125,6 +129,8 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     slot.points.clear();
     slot.rays = 0;
     slot.az_lo = slot.az_hi = slot.el_lo = slot.el_hi = 0.0;
+    slot.velocity_world = Eigen::Vector3d::Zero();
+    slot.range_m = 0.0;
     const Line& line = lines_[static_cast<std::size_t>(line_index)];
     // The target's box as the line sees it while it fires: its corners' raster angles at the
     // line's first, middle and last beam.
@@ -132,13 +138,14 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     const double t_first = frame_start_s_ + std::min(line.time_by_az.front().second, line.time_by_az.back().second);
     const double t_last = frame_start_s_ + std::max(line.time_by_az.front().second, line.time_by_az.back().second);
     thread_local std::vector<raytrace::ObjectBounds> objects;
-    Eigen::Vector3d centre_first = Eigen::Vector3d::Zero(), centre_last = Eigen::Vector3d::Zero();
+    Eigen::Vector3d centre_first = Eigen::Vector3d::Zero(), centre_mid = Eigen::Vector3d::Zero(), centre_last = Eigen::Vector3d::Zero();
     for (const double t : {t_first, 0.5 * (t_first + t_last), t_last}) {
         traced_.object_bounds(t, objects);
         const auto b = std::find_if(objects.begin(), objects.end(), [&](const raytrace::ObjectBounds& o) { return o.object_id == object_id; });
         if (b == objects.end()) return;
         if (t == t_first) centre_first = b->centre_world;
         if (t == t_last) centre_last = b->centre_world;
+        if (t != t_first && t != t_last) centre_mid = b->centre_world;
         for (int k = 0; k < 8; ++k) {
             const Eigen::Vector3d corner = b->box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
             const Eigen::Vector3d v = world_from_gimbal_.transpose() * (b->world_from_model * corner.homogeneous() - origin_world_);
@@ -174,23 +181,23 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     slot.az_hi = az_hi;
     slot.el_lo = el_lo;
     slot.el_hi = el_hi;
-    // Moved to a beam's time t_b, a point met at azimuth a (left at t(a) = t0 + s a) lies at
-    // a + w (t_b - t(a)), w the target's angular speed in azimuth: the strata's azimuths stretch
-    // by d/da = 1 - w s, and their density by its inverse.
+    // A beam moves the whole lattice with the target to its own time (gather): a sub-ray left at
+    // azimuth a at t(a) lands at a + w (t_b - t(a)), w the target's angular speed in azimuth, so
+    // the strata stretch by 1 - w dt/da there, and their density by its inverse. Where that nears
+    // zero (a target crossing as fast as the scan) the beams sample it themselves.
+    slot.range_m = (centre_mid - origin_world_).norm();
+    double w = 0.0;
     if (t_last > t_first) {
         slot.velocity_world = (centre_last - centre_first) / (t_last - t_first);
-        const double w = (raster_angles(centre_last - origin_world_).x() - raster_angles(centre_first - origin_world_).x()) / (t_last - t_first);
-        const auto& ends = line.time_by_az;
-        if (ends.back().first > ends.front().first)
-            slot.stretch = 1.0 - w * (ends.back().second - ends.front().second) / (ends.back().first - ends.front().first);
+        w = (raster_angles(centre_last - origin_world_).x() - raster_angles(centre_first - origin_world_).x()) / (t_last - t_first);
     }
 
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
     rays.clear();
     const std::size_t target = target_index_.at(object_id);
-    const double w = footprint_.waist_rad();
-    const double axis_peak = std::sqrt(2.0 / std::numbers::pi) / w;  ///< the axis Gaussian's density at its centre
+    const double w_waist = footprint_.waist_rad();
+    const double axis_peak = std::sqrt(2.0 / std::numbers::pi) / w_waist;  ///< the axis Gaussian's density at its centre
     for (int j = 0; j < grid_base_; ++j) {
         auto el_at = [&](double cdf) { return line.el_rad + ellipticity_ * footprint_.axis_offset(cdf); };
             for (int i = 0; i < columns; ++i) {
@@ -210,14 +217,20 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             // line's elevation), and across it as the line's Gaussian: the stratum's probability
             // over the density it was drawn with (that Gaussian's, relative to its peak, there).
             const double y = (el - line.el_rad) / ellipticity_;
+            const auto [time, slope] = time_at(line, az);
+            const double stretch = 1.0 - w * slope;
+            if (!(stretch > kMinStretch)) {
+                slot.points.clear();
+                return;
+            }
             p.per_irradiance = step_az * std::cos(line.el_rad) * cdf_step * axis_peak * footprint_.cell_weight(1.0, 1.0) /
-                               std::exp(-2.0 * y * y / (w * w));
+                               std::exp(-2.0 * y * y / (w_waist * w_waist)) * stretch;
+            p.time_s = frame_start_s_ + time;
             slot.points.push_back(p);
             raytrace::Ray ray;
             ray.origin_world = origin_world_;
             ray.direction = p.direction_world;
-            ray.time_s = frame_start_s_ + time_at(line, az);
-            slot.points.back().time_s = ray.time_s;
+            ray.time_s = slot.points.back().time_s;
             ray.max_range_m = max_range_m_;
             rays.push_back(ray);
         }
@@ -242,12 +255,14 @@ std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t ob
     if (slot.points.empty()) return std::nullopt;
     // The lattice must hold the beam's view of the outline: its corners, in raster angles (both
     // are the same box, padded alike, or clipped alike to the footprint's reach, found by
-    // different roundings).
+    // different roundings; and a rectangle of footprint offsets is not one of raster angles off
+    // the line's elevation: its corners sag by up to tan|el| r^2 / 2).
+    const double r_max = footprint_.max_offset_rad();
+    const double slack = kSlack_rad + std::tan(std::abs(lines_[static_cast<std::size_t>(line)].el_rad) + r_max * ellipticity_) * r_max * r_max;
     for (const double x : {outline.x_lo, outline.x_hi}) {
         for (const double y : {outline.y_lo, outline.y_hi}) {
             const Eigen::Vector2d a = raster_angles(aim.world_from_beam * integrator_.in_beam(x, y));
-            if (a.x() < slot.az_lo - kSlack_rad || a.x() > slot.az_hi + kSlack_rad || a.y() < slot.el_lo - kSlack_rad ||
-                a.y() > slot.el_hi + kSlack_rad)
+            if (a.x() < slot.az_lo - slack || a.x() > slot.az_hi + slack || a.y() < slot.el_lo - slack || a.y() > slot.el_hi + slack)
                 return std::nullopt;
         }
     }
@@ -265,15 +280,18 @@ std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t ob
     kept.clear();
     double total = 0.0;
     for (const Point& p : slot.points) {
-        // What met the target, moved to where the target stood when this beam fired.
-        const bool moved = p.hit && p.object_id == object_id;
-        const Eigen::Vector3d at = moved ? Eigen::Vector3d(p.point_world + slot.velocity_world * (aim.time_s - p.time_s)) : p.point_world;
-        const Eigen::Vector3d v = beam_from_world * (moved ? Eigen::Vector3d(at - origin_world_) : p.direction_world);
+        // The whole lattice moved with the target to where it stood when this beam fired: what
+        // met the target exactly, every other sub-ray as the point at the target's range along it
+        // (what it met behind stays where it was: a shift of millimetres at the target).
+        const Eigen::Vector3d shift = slot.velocity_world * (aim.time_s - p.time_s);
+        const bool on_target = p.hit && p.object_id == object_id;
+        const Eigen::Vector3d moved = (on_target ? p.point_world : Eigen::Vector3d(origin_world_ + slot.range_m * p.direction_world)) + shift;
+        const Eigen::Vector3d v = beam_from_world * (moved - origin_world_);
         if (!(v.x() > 0.0)) continue;
         const double x = small_atan(v.y() / v.x()), y = small_atan(v.z() / v.x()) / ellipticity_;
         if (!footprint_.contains(outline, x, y) || !footprint_.within_truncation(x, y)) continue;
-        const double weight = integrator_.irradiance(x, y) * p.per_irradiance * (moved ? slot.stretch : 1.0);
-        kept.push_back({&p, weight, at});
+        const double weight = integrator_.irradiance(x, y) * p.per_irradiance;
+        kept.push_back({&p, weight, on_target ? moved : p.point_world});
         total += weight;
     }
     if (static_cast<double>(kept.size()) < kMinShareOfBudget * grid_base_ * grid_base_ || !(total > 0.0)) return std::nullopt;

@@ -72,8 +72,8 @@ private:
     FootprintIntegrator integrator_;
     /// Sub-rays shared by overlapping footprints over a recorded map (null where they do not pay).
     std::unique_ptr<SubRayLattice> lattice_;
-    /// Sub-rays over a bright lone target shared by the footprints of a line (null where they
-    /// would not overlap).
+    /// Sub-rays over a lone target shared by the footprints of a line (null where they would not
+    /// overlap).
     std::unique_ptr<TargetLattice> target_lattice_;
     std::vector<GimbalPointing> pointing_by_frame_;
     std::vector<Neighbour> neighbours_;

@@ -27,13 +27,13 @@ namespace ladarsim::sensor_model {
 /// density it was drawn with, instead of sampling the outline itself: the ~15 footprints of a line
 /// that overlap a drone share one set of rays.
 ///
-/// A sub-ray leaves at the time the line's beam pointing closest to it in azimuth fires, up to a
-/// footprint's width of the line away from a beam that uses it (in the paper's raster 107 us:
-/// 6 mm at 60 m/s). A beam moves what its sub-rays met on the target by the target's motion
-/// since (a translation at its velocity over the line) to where it stood when the beam fired:
-/// taken as they were, a 0.3 m plate crossing 1 km out at 60 m/s on a raster 5 times slower
-/// along its lines than the paper's lost 1.1-1.5 % of its echo to the outline's edges (the
-/// footprint's own view of it, at its own time, clipped the moved plate); moved, 0.1 %.
+/// A sub-ray leaves when the line sweeps its azimuth (interpolated between the beams either side),
+/// up to a footprint's width of the line from a beam that uses it (in the paper's raster 107 us:
+/// 6 mm at 60 m/s). A beam moves the lattice with the target (a translation at its velocity over
+/// the line) to where it stood when the beam fired, what met the target exactly: taken as they
+/// were, a 0.3 m plate crossing 1 km out at 60 m/s on a raster 5 times slower along its lines than
+/// the paper's lost 1.1-1.5 % of its echo to the outline's edges (the footprint's own view of it,
+/// at its own time, clipped the moved plate); moved, 0.1 %.
 ///
 /// A lattice is traced when a beam first needs it, once a frame, on whichever thread asks first;
 /// its jitter is keyed by (seed, frame, target, line and its place in it), so the result is the same
@@ -65,7 +65,8 @@ public:
 
 private:
     struct Point : LatticeSubRay {
-        double per_irradiance = 0.0;  ///< the share of the beam it carries per unit of the beam's irradiance there
+        /// The share of the beam it carries per unit of the beam's irradiance where it lands.
+        double per_irradiance = 0.0;
         double time_s = 0.0;          ///< when it left
     };
     struct Line {
@@ -77,16 +78,18 @@ private:
     struct Slot {
         std::atomic<std::uint8_t> state{0};
         double az_lo = 0.0, az_hi = 0.0, el_lo = 0.0, el_hi = 0.0;  ///< what it covers
-        /// The target's velocity while the line fires, and how much its motion stretches the
-        /// lattice's strata in azimuth as a beam sees them moved to its own time (see gather).
+        /// The target's velocity while the line fires, and its range (gather moves the lattice
+        /// with it).
         Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();
-        double stretch = 1.0;
+        double range_m = 0.0;
         int rays = 0;
         std::vector<Point> points;
     };
     const Slot& ensure(int line, std::size_t target, std::uint32_t object_id, int& rays) const;
     void trace_slot(Slot& slot, int line, std::uint32_t object_id) const;
-    double time_at(const Line& line, double az) const;
+    /// When the line sweeps azimuth `az` (after the frame's start), and how fast that changes
+    /// with azimuth (0 beyond its first and last beam, where it is held).
+    std::pair<double, double> time_at(const Line& line, double az) const;
     Eigen::Vector3d direction_world(double az, double el) const;
     /// Raster angles (azimuth, elevation offsets) of a world direction.
     Eigen::Vector2d raster_angles(const Eigen::Vector3d& direction_world) const;
