@@ -200,7 +200,7 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     const double axis_peak = std::sqrt(2.0 / std::numbers::pi) / w_waist;  ///< the axis Gaussian's density at its centre
     for (int j = 0; j < grid_base_; ++j) {
         auto el_at = [&](double cdf) { return line.el_rad + ellipticity_ * footprint_.axis_offset(cdf); };
-            for (int i = 0; i < columns; ++i) {
+        for (int i = 0; i < columns; ++i) {
             const std::uint32_t index = static_cast<std::uint32_t>(j * columns + i);
             double ja = 0.5, je = 0.5;
             if (jitter_) {
