@@ -19,4 +19,8 @@ GimbalPointing pointing_towards(const Eigen::Vector3d& d) {
     return {std::atan2(d.y(), d.x()), std::atan2(d.z(), std::hypot(d.x(), d.y()))};
 }
 
+Eigen::Vector3d direction_towards(GimbalPointing a) {
+    return {std::cos(a.az_rad) * std::cos(a.el_rad), std::sin(a.az_rad) * std::cos(a.el_rad), std::sin(a.el_rad)};
+}
+
 }  // namespace ladarsim::sensor_model

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
@@ -14,25 +15,20 @@ namespace {
 constexpr double kMergedSigmas = 0.1;
 constexpr double kMergedWidths = 0.02;
 
-/// Energy-weighted mean and standard deviation of the ranges a surface's echoes came from (an
-/// echo of a whole patch brings its own spread).
-std::pair<double, double> range_moments(const std::vector<Echo>& echoes) {
+/// Echoes as one: their energy at their energy-weighted mean range, stretched by the standard
+/// deviation of their ranges (each echo of a whole patch brings its own spread); the first one's
+/// range, spread and surface where they carry no energy.
+Echo merged(std::span<const Echo> echoes) {
     double energy = 0.0, mean = 0.0;
     for (const Echo& e : echoes) {
         energy += e.energy_j;
         mean += e.energy_j * e.range_m;
     }
-    if (!(energy > 0.0)) return {echoes.front().range_m, echoes.front().spread_m};
+    if (!(energy > 0.0)) return {echoes.front().range_m, energy, echoes.front().surface, echoes.front().spread_m};
     mean /= energy;
     double variance = 0.0;
     for (const Echo& e : echoes) variance += e.energy_j * ((e.range_m - mean) * (e.range_m - mean) + e.spread_m * e.spread_m);
-    return {mean, std::sqrt(variance / energy)};
-}
-
-double total_energy(const std::vector<Echo>& echoes) {
-    double e = 0.0;
-    for (const Echo& echo : echoes) e += echo.energy_j;
-    return e;
+    return {mean, energy, echoes.front().surface, std::sqrt(variance / energy)};
 }
 
 /// Appends a surface's echoes to `out`, each run of them (in their order) that the waveform cannot
@@ -50,24 +46,10 @@ void append_merged(const std::vector<Echo>& echoes, double pulse_sigma_m, std::v
         while (last < echoes.size() && std::abs(echoes[last].range_m - r0) <= kMergedSigmas * w0 &&
                std::abs(width(echoes[last]) - w0) <= kMergedWidths * w0)
             ++last;
-        double energy = 0.0, moment = 0.0, second = 0.0;
-        for (std::size_t i = first + 1; i < last; ++i) energy += echoes[i].energy_j;
-        if (last == first + 1 || !(energy > 0.0)) {
-            // Alone, or nothing to add to it.
-            out.push_back(echoes[first]);
-        } else {
-            // Moments about r0: the offsets are centimetres, the ranges kilometres.
-            energy = 0.0;
-            for (std::size_t i = first; i < last; ++i) {
-                const Echo& e = echoes[i];
-                const double d = e.range_m - r0;
-                energy += e.energy_j;
-                moment += e.energy_j * d;
-                second += e.energy_j * (d * d + e.spread_m * e.spread_m);
-            }
-            const double mean = moment / energy;
-            out.push_back({r0 + mean, energy, echoes[first].surface, std::sqrt(std::max(0.0, second / energy - mean * mean))});
-        }
+        double added = 0.0;
+        for (std::size_t i = first + 1; i < last; ++i) added += echoes[i].energy_j;
+        // Alone, or nothing to add to it: as it is.
+        out.push_back(last == first + 1 || !(added > 0.0) ? echoes[first] : merged(std::span(echoes).subspan(first, last - first)));
         first = last;
     }
 }
@@ -94,8 +76,8 @@ void BeamReceiver::fold(DetectedReturn& r) const {
 }
 
 DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSequence& noise) const {
-    const auto [range, spread] = range_moments(surface.echoes);
-    const double energy = total_energy(surface.echoes);
+    const Echo one = merged(surface.echoes);
+    const double range = one.range_m, energy = one.energy_j, spread = one.spread_m;
     // The echoes of one surface add up to one pulse, stretched by their spread in arrival time.
     const PulseShape shape = PulseShape::of(sensor_.transmitter.pulse_width_ns * 1e-9, 2.0 * spread / kSpeedOfLight_mps);
     const double power = energy * shape.peak_per_joule();
@@ -152,7 +134,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
         BeamSurface& s = surfaces[i];
         for (Echo& e : s.echoes) e.surface = i;
         if (!noise_ || s.source != ReturnSource::surface || s.echoes.empty()) continue;
-        const double range = range_moments(s.echoes).first;
+        const double range = merged(s.echoes).range_m;
         const double spot = range * std::sqrt(sensor_.transmitter.divergence_mrad * sensor_.transmitter.divergence_el_mrad) * 1e-3 *
                             std::sqrt(std::max(s.weight, 1e-12));
         const double factor = speckle.gamma_unit_mean(
@@ -166,8 +148,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
     // separate: summed, their pulses draw its waveform whatever the sampling density.)
     for (BeamSurface& s : surfaces) {
         if (s.source != ReturnSource::volume || s.echoes.size() < 2) continue;
-        const auto [range, spread] = range_moments(s.echoes);
-        s.echoes = {Echo{range, total_energy(s.echoes), s.echoes.front().surface, spread}};
+        s.echoes = {merged(s.echoes)};
     }
 
     RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);
@@ -204,7 +185,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
                 const BeamSurface& s = surfaces[p.surface];
                 r.object_id = s.object_id;
                 r.source = s.source;
-                const double true_range = range_moments(s.echoes).first;
+                const double true_range = merged(s.echoes).range_m;
                 if (sensor_.receiver.range_folding)
                     r.pulse_offset = static_cast<std::uint8_t>(std::min(std::floor(true_range / unambiguous_range_m_), 255.0));
             }

@@ -62,8 +62,6 @@ double RandomSequence::gamma_unit_mean(double k) {
     }
 }
 
-int RandomSequence::poisson(double mean) { return poisson(mean, std::exp(-mean)); }
-
 int RandomSequence::poisson(double mean, double exp_minus_mean) {
     const double u = uniform();
     double p = exp_minus_mean, cumulative = p;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "ladarsim/sensor_model/beam_geometry.h"
 #include "ladarsim/sensor_model/counter_random.h"
 
 namespace ladarsim::sensor_model {
@@ -75,9 +76,7 @@ SubRayLattice::SubRayLattice(const raytrace::TracedScene& traced, const ScanPatt
 }
 
 void SubRayLattice::start_frame(GimbalPointing pointing, std::uint64_t frame) {
-    const Eigen::Quaterniond gimbal =
-        Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
-    world_from_gimbal_ = world_from_sensor_ * gimbal.toRotationMatrix();
+    world_from_gimbal_ = world_from_sensor_ * sensor_from_beam(pointing, 0.0, 0.0);
     frame_ = frame;
     for (int t = 0; t < tile_columns_ * tile_rows_; ++t) tile_state_[static_cast<std::size_t>(t)].store(0, std::memory_order_relaxed);
 }
@@ -121,7 +120,7 @@ int SubRayLattice::trace_tile(std::size_t t) const {
             }
             const double az = az_lo_ + (column + ja) * step_az_, el = el_lo_ + (row + je) * step_el_;
             Point& point = points_[p];
-            point.direction_world = world_from_gimbal_ * Eigen::Vector3d(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+            point.direction_world = world_from_gimbal_ * direction_towards({az, el});
             raytrace::Ray ray;
             ray.origin_world = origin_world_;
             ray.direction = point.direction_world;

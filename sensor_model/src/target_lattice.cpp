@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "ladarsim/sensor_model/beam_geometry.h"
 #include "ladarsim/sensor_model/counter_random.h"
 
 namespace ladarsim::sensor_model {
@@ -75,21 +76,14 @@ TargetLattice::TargetLattice(const raytrace::TracedScene& traced, const ScanPatt
 }
 
 void TargetLattice::start_frame(GimbalPointing pointing, std::uint64_t frame, double frame_start_s) {
-    const Eigen::Quaterniond gimbal =
-        Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
-    world_from_gimbal_ = world_from_sensor_ * gimbal.toRotationMatrix();
+    world_from_gimbal_ = world_from_sensor_ * sensor_from_beam(pointing, 0.0, 0.0);
     frame_ = frame;
     frame_start_s_ = frame_start_s;
     for (std::size_t s = 0; s < lines_.size() * target_index_.size(); ++s) slots_[s].state.store(0, std::memory_order_relaxed);
 }
 
-Eigen::Vector3d TargetLattice::direction_world(double az, double el) const {
-    return world_from_gimbal_ * Eigen::Vector3d(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
-}
-
-Eigen::Vector2d TargetLattice::raster_angles(const Eigen::Vector3d& direction_world) const {
-    const Eigen::Vector3d v = world_from_gimbal_.transpose() * direction_world;
-    return {std::atan2(v.y(), v.x()), std::atan2(v.z(), std::hypot(v.x(), v.y()))};
+GimbalPointing TargetLattice::raster_angles(const Eigen::Vector3d& direction_world) const {
+    return pointing_towards(world_from_gimbal_.transpose() * direction_world);
 }
 
 std::pair<double, double> TargetLattice::time_at(const Line& line, double az) const {
@@ -150,11 +144,11 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             const Eigen::Vector3d corner = b->box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
             const Eigen::Vector3d v = world_from_gimbal_.transpose() * (b->world_from_model * corner.homogeneous() - origin_world_);
             if (!(v.x() > 0.0)) return;  // beside or behind the sensor: its beams sample it themselves
-            const Eigen::Vector2d a = raster_angles(world_from_gimbal_ * v);
-            az_lo = std::min(az_lo, a.x());
-            az_hi = std::max(az_hi, a.x());
-            el_lo = std::min(el_lo, a.y());
-            el_hi = std::max(el_hi, a.y());
+            const GimbalPointing a = pointing_towards(v);
+            az_lo = std::min(az_lo, a.az_rad);
+            az_hi = std::max(az_hi, a.az_rad);
+            el_lo = std::min(el_lo, a.el_rad);
+            el_hi = std::max(el_hi, a.el_rad);
         }
     }
     // Padded as a beam's outline is (Embree's single-precision placement), and clipped to what
@@ -189,7 +183,7 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
     double w = 0.0;
     if (t_last > t_first) {
         slot.velocity_world = (centre_last - centre_first) / (t_last - t_first);
-        w = (raster_angles(centre_last - origin_world_).x() - raster_angles(centre_first - origin_world_).x()) / (t_last - t_first);
+        w = (raster_angles(centre_last - origin_world_).az_rad - raster_angles(centre_first - origin_world_).az_rad) / (t_last - t_first);
     }
 
     thread_local std::vector<raytrace::Ray> rays;
@@ -212,7 +206,7 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             const double az = az_lo + (i + ja) * step_az;
             const double el = el_at(cdf_lo + (j + je) * cdf_step);
             Point p;
-            p.direction_world = direction_world(az, el);
+            p.direction_world = world_from_gimbal_ * direction_towards({az, el});
             // Drawn uniformly along the line in footprint offsets (azimuth foreshortened by the
             // line's elevation), and across it as the line's Gaussian: the stratum's probability
             // over the density it was drawn with (that Gaussian's, relative to its peak, there).
@@ -261,8 +255,8 @@ std::optional<double> TargetLattice::gather(const BeamAim& aim, std::uint32_t ob
     const double slack = kSlack_rad + std::tan(std::abs(lines_[static_cast<std::size_t>(line)].el_rad) + r_max * ellipticity_) * r_max * r_max;
     for (const double x : {outline.x_lo, outline.x_hi}) {
         for (const double y : {outline.y_lo, outline.y_hi}) {
-            const Eigen::Vector2d a = raster_angles(aim.world_from_beam * integrator_.in_beam(x, y));
-            if (a.x() < slot.az_lo - slack || a.x() > slot.az_hi + slack || a.y() < slot.el_lo - slack || a.y() > slot.el_hi + slack)
+            const GimbalPointing a = raster_angles(aim.world_from_beam * integrator_.in_beam(x, y));
+            if (a.az_rad < slot.az_lo - slack || a.az_rad > slot.az_hi + slack || a.el_rad < slot.el_lo - slack || a.el_rad > slot.el_hi + slack)
                 return std::nullopt;
         }
     }

@@ -14,4 +14,7 @@ Eigen::Matrix3d sensor_from_beam(GimbalPointing pointing, double az_offset_rad, 
 /// Azimuth and elevation of a direction in the sensor frame (zero for a zero vector).
 GimbalPointing pointing_towards(const Eigen::Vector3d& direction_sensor);
 
+/// The unit direction at an azimuth and elevation: the inverse of pointing_towards.
+Eigen::Vector3d direction_towards(GimbalPointing angles);
+
 }  // namespace ladarsim::sensor_model

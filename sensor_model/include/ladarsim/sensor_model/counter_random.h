@@ -36,9 +36,8 @@ public:
     double normal();   ///< standard normal (Box-Muller)
     /// Gamma distributed with shape k and mean 1 (Marsaglia and Tsang 2000): speckle of k cells.
     double gamma_unit_mean(double k);
-    /// Poisson distributed with the given mean (inversion; for the small means of false alarms).
-    int poisson(double mean);
-    /// The same, exp(-mean) given (a mean drawn for every beam).
+    /// Poisson distributed with the given mean, exp(-mean) given (inversion; for the small means
+    /// of false alarms, drawn for every beam with one mean).
     int poisson(double mean, double exp_minus_mean);
 
 private:

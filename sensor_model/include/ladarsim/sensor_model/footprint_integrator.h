@@ -79,7 +79,6 @@ class SubRayLattice;
 class TargetLattice;
 
 /// What one beam met, before the receiver.
-
 struct BeamEchoes {
     std::vector<SurfaceEcho> surface;
     std::vector<BeamSurface> volume;

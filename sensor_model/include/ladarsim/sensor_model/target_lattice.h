@@ -90,9 +90,8 @@ private:
     /// When the line sweeps azimuth `az` (after the frame's start), and how fast that changes
     /// with azimuth (0 beyond its first and last beam, where it is held).
     std::pair<double, double> time_at(const Line& line, double az) const;
-    Eigen::Vector3d direction_world(double az, double el) const;
     /// Raster angles (azimuth, elevation offsets) of a world direction.
-    Eigen::Vector2d raster_angles(const Eigen::Vector3d& direction_world) const;
+    GimbalPointing raster_angles(const Eigen::Vector3d& direction_world) const;
 
     const raytrace::TracedScene& traced_;
     const FootprintIntegrator& integrator_;
