@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <utility>
 
 #include "ladarsim/sensor_model/counter_random.h"
+#include "ladarsim/sensor_model/edge_profile.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
 #include "ladarsim/sensor_model/sub_ray_lattice.h"
@@ -21,6 +23,14 @@ namespace {
 constexpr double kMradToRad = 1e-3;
 constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays)
 constexpr int kEdgeQuadrature = 8;  // sub-rays spreading each side of a straight edge's share
+/// A side of a straight edge is taken to lie on one plane where its points leave the plane fitted to
+/// them by at most this fraction of their spread in range (RMS), or the pulse's width.
+constexpr double kPlaneFit = 0.1;
+/// A side whose echo's peak is bounded below this fraction of the threshold is not resolved in range
+/// (the bound, truncation's renormalisation aside, is within 2 % of exact).
+constexpr double kUndetectable = 0.5;
+/// A side's range profile takes slices this much finer than its spread (or as fine as the pulse).
+constexpr double kSlicesPerSpread = 24.0;
 /// Objects subtending less than this many footprint radii can hide between the probes or cover a
 /// part of a footprint no probe sees: they are tested against each beam's cone and sampled.
 constexpr double kSmallObjectFootprints = 8.0;
@@ -360,6 +370,7 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
                                   kOutlineSamplesMin, kOutlineSamplesMax)),
       ellipticity_(scenario.sensor.transmitter.divergence_el_mrad / scenario.sensor.transmitter.divergence_mrad),
       small_object_rad_(0.0),
+      pulse_sigma_m_(PulseShape::of(scenario.sensor.transmitter.pulse_width_ns * 1e-9).sigma_s * 0.5 * kSpeedOfLight_mps),
       grid_base_(static_cast<int>(std::sqrt(static_cast<double>(outline_samples_)))),
       aperture_radius2_(aperture_radius2_m2(scenario.sensor.optics.aperture_area_m2())),
       footprint_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, adaptive_ ? kQuadrature : scenario.render.footprint_samples,
@@ -1402,11 +1413,76 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         if (nodes_on[static_cast<std::size_t>(q.side)] == 0) m.energy += g * energy_of(q.seen);
         if (!m.nearest || q.offset.squaredNorm() < m.nearest->offset.squaredNorm()) m.nearest = &q;
     }
+    // A side whose points spread in range beyond the pulse: the shape of its echo in range, where
+    // they lie on one plane, replaces its echoes (appended from `first`; their energy kept).
+    thread_local std::vector<RangeSample> samples;
+    thread_local std::vector<RangeSlice> slices;
+    auto resolve_in_range = [&](int side, double share, double spread, std::size_t first) {
+        samples.clear();
+        for (const Point& q : points)
+            if (q.side == side && q.seen.hit) samples.push_back({q.offset, q.seen.echo.range_m});
+        for (std::size_t k = 0; k < offsets.size(); ++k)
+            if (node_side[k] == side && seen[k].hit) samples.push_back({offsets[k], seen[k].echo.range_m});
+        const std::optional<RangePlane> plane = fit_range_plane(samples, r_max, std::max(pulse_sigma_m_, kPlaneFit * spread));
+        if (!plane) return;
+        double energy = 0.0;
+        for (std::size_t k = first; k < out.surface.size(); ++k) energy += out.surface[k].energy_j;
+        // A side that cannot reach the threshold on its own (ground grazed over tens of metres)
+        // takes one echo of its profile's mean and spread. No part of the side is denser in range than the whole beam's marginal
+        // across the gradient g, 1 / (sqrt(2 pi) sigma) per radian: its echo peaks below the whole
+        // footprint's energy on that surface in one pulse times sigma_r / (g sigma); failing that,
+        // below its own densest slice's energy per metre times sqrt(2 pi) sigma_r.
+        const double sigma = 0.5 * footprint_.waist_rad();
+        const double reach = kUndetectable * threshold_energy_j(0.0);
+        const ChordSide chord{normal, distance, side == cap_side};
+        slices.clear();
+        const bool bright = energy / share * pulse_sigma_m_ / (plane->per_rad.norm() * sigma) >= reach;
+        const double depth = bright ? std::max(pulse_sigma_m_, spread / kSlicesPerSpread) : std::numeric_limits<double>::infinity();
+        if (!range_profile(*plane, chord, r_max, sigma, depth, slices)) return;
+        // The profile's moments, and its densest slice (share per metre of range).
+        RangeSlice one{Eigen::Vector2d::Zero(), 0.0, 1.0, 0.0};
+        double densest = 0.0;
+        for (const RangeSlice& slice : slices) {
+            one.offset += slice.share * slice.offset;
+            one.range_m += slice.share * slice.range_m;
+            densest = std::max(densest, slice.share / (std::sqrt(12.0) * slice.spread_m));
+        }
+        for (const RangeSlice& slice : slices)
+            one.spread_m += slice.share * (std::pow(slice.range_m - one.range_m, 2) + slice.spread_m * slice.spread_m);
+        one.spread_m = std::sqrt(one.spread_m);
+        // One echo of those moments where the side cannot reach the threshold on its own.
+        const double root_2pi = std::sqrt(2.0 * std::numbers::pi);
+        if (!bright || energy * densest * pulse_sigma_m_ * root_2pi < reach)
+            slices.assign(1, one);
+        // The slices lie on the plane fitted: its normal, so that they make one surface however far
+        // apart (gather_surfaces), as the side's echoes did.
+        auto on_plane = [&](double x, double y) {
+            return Eigen::Vector3d((plane->at_axis_m + plane->per_rad.dot(Eigen::Vector2d(x, y))) * in_beam(x, y));
+        };
+        const double step = 0.1 * r_max;
+        const Eigen::Vector3d in_plane_normal = (on_plane(step, 0.0) - on_plane(0.0, 0.0)).cross(on_plane(0.0, step) - on_plane(0.0, 0.0));
+        SurfaceEcho like = out.surface[first];
+        if (in_plane_normal.norm() > 0.0) like.normal_world = (aim.world_from_beam * in_plane_normal.normalized()).cast<float>();
+        out.surface.resize(first);
+        for (const RangeSlice& slice : slices) {
+            SurfaceEcho e = like;
+            e.range_m = slice.range_m;
+            e.weight = share * slice.share;
+            e.energy_j = energy * slice.share;
+            e.spread_m = slice.spread_m;
+            // (Along (1, x, y) unnormalised: a footprint's offsets are milliradians, so the point
+            // is off by the range times their square, well inside what gather_surfaces allows.)
+            e.point_world = origin + slice.range_m * (aim.world_from_beam * Eigen::Vector3d(1.0, slice.offset.x(), slice.offset.y() * ellipticity_));
+            out.surface.push_back(e);
+        }
+    };
     for (int side = 0; side < 2; ++side) {
         const auto s = static_cast<std::size_t>(side);
         if (!surface[s]->hit) continue;
         const double share = side == cap_side ? cap : 1.0 - cap;
         const SidePoints& m = side_points[s];
+        const std::size_t first = out.surface.size();
+        const double spread = m.weight > 0.0 ? std::sqrt(m.variance()) : 0.0;
         if (nodes_on[s] == 0) {
             // A sliver no cell falls on takes the mean of its points.
             SurfaceEcho e = m.nearest->seen.echo;
@@ -1414,8 +1490,9 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
             e.weight = share;
             e.energy_j = share * m.energy / m.weight;
             e.sample = 0;
-            e.spread_m = std::sqrt(m.variance());
+            e.spread_m = spread;
             out.surface.push_back(e);
+            if (spread > pulse_sigma_m_) resolve_in_range(side, share, spread, first);
             continue;
         }
         // The variance of range the side's points show beyond its cells' own: each cell's echo is
@@ -1440,6 +1517,7 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
             e.spread_m = std::sqrt(e.spread_m * e.spread_m + missing_variance);
             out.surface.push_back(e);
         }
+        if (spread > pulse_sigma_m_) resolve_in_range(side, share, spread, first);
     }
     return true;
 }

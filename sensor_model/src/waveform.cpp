@@ -60,33 +60,54 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
 }
 
 void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& pulses) const {
-    thread_local std::vector<Echo> sorted;
-    sorted.assign(echoes.begin(), echoes.end());
-    std::sort(sorted.begin(), sorted.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
     const double to_time = 2.0 / kSpeedOfLight_mps;
-    double widest = pulse_.sigma_s, peaks = 0.0;
-    for (const Echo& e : sorted) {
-        const PulseShape shape = shape_of(e);
-        widest = std::max(widest, shape.sigma_s);
-        peaks += e.energy_j * shape.peak_per_joule();
+    // Each echo's kept pulse: kWindowSigmas of its own width each side of its centre.
+    struct Reach {
+        double begin_s, end_s;
+        double peak_w;  ///< its pulse's peak power
+        std::size_t echo;
+    };
+    thread_local std::vector<Reach> reach;
+    reach.clear();
+    double peaks = 0.0;
+    for (std::size_t i = 0; i < echoes.size(); ++i) {
+        const PulseShape shape = shape_of(echoes[i]);
+        const double te = echoes[i].range_m * to_time;
+        reach.push_back({te - kWindowSigmas * shape.sigma_s, te + kWindowSigmas * shape.sigma_s,
+                         echoes[i].energy_j * shape.peak_per_joule(), i});
+        peaks += reach.back().peak_w;
     }
     // Even with every pulse's peak at one instant the signal stays below the threshold: nothing to
     // detect (what noise alone crosses is the false-alarm process).
     if (reach_a(peaks, noise != nullptr) <= apd_.threshold_a()) return;
-    const double margin_s = kWindowSigmas * widest;
-    for (std::size_t first = 0; first < sorted.size();) {
+    // Windows where the kept pulses overlap (by their own widths: one echo stretched over tens of
+    // metres does not widen the window around another a kilometre away); each window's echoes
+    // sorted by range.
+    std::sort(reach.begin(), reach.end(), [](const Reach& a, const Reach& b) { return a.begin_s < b.begin_s; });
+    thread_local std::vector<Echo> window;
+    for (std::size_t first = 0; first < reach.size();) {
+        double end = reach[first].end_s, window_peaks = reach[first].peak_w;
         std::size_t last = first + 1;
-        while (last < sorted.size() && (sorted[last].range_m - sorted[last - 1].range_m) * to_time < 2.0 * margin_s) ++last;
-        const double t0 = sorted[first].range_m * to_time - margin_s;
-        const double t1 = sorted[last - 1].range_m * to_time + margin_s;
-        const auto bins = static_cast<std::size_t>(std::ceil((t1 - t0) / bin_s_)) + 1;
+        for (; last < reach.size() && reach[last].begin_s < end; ++last) {
+            end = std::max(end, reach[last].end_s);
+            window_peaks += reach[last].peak_w;
+        }
+        if (reach_a(window_peaks, noise != nullptr) <= apd_.threshold_a()) {  // the same, window by window
+            first = last;
+            continue;
+        }
+        window.clear();
+        for (std::size_t k = first; k < last; ++k) window.push_back(echoes[reach[k].echo]);
+        std::sort(window.begin(), window.end(), [](const Echo& a, const Echo& b) { return a.range_m < b.range_m; });
+        const double t0 = reach[first].begin_s;
+        const auto bins = static_cast<std::size_t>(std::ceil((end - t0) / bin_s_)) + 1;
         // A long window (a grazing footprint's) is built only where pulses can be detected.
         if (bins <= kShortWindow) {
-            detect_window(std::span(sorted).subspan(first, last - first), t0, bins, noise, pulses);
+            detect_window(window, t0, bins, noise, pulses);
         } else {
-            for (const LiveSpan& live : live_spans(std::span(sorted).subspan(first, last - first), t0, bins, noise != nullptr))
-                detect_window(std::span(sorted).subspan(first + live.first_echo, live.echoes), t0 + live.first_bin * bin_s_,
-                              live.bins, noise, pulses);
+            for (const LiveSpan& live : live_spans(window, t0, bins, noise != nullptr))
+                detect_window(std::span(window).subspan(live.first_echo, live.echoes), t0 + live.first_bin * bin_s_, live.bins, noise,
+                              pulses);
         }
         first = last;
     }

@@ -200,6 +200,7 @@ private:
     std::size_t outline_samples_;  ///< a target outline's (and a map footprint's) sub-ray budget at this tolerance
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
+    double pulse_sigma_m_;      ///< the pulse's standard deviation, in range
     int grid_base_;             ///< cells along each axis of a bright lone target's grid (grid_base_^2 ~ outline_samples_)
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;
