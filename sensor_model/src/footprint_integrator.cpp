@@ -1414,67 +1414,15 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         if (!m.nearest || q.offset.squaredNorm() < m.nearest->offset.squaredNorm()) m.nearest = &q;
     }
     // A side whose points spread in range beyond the pulse: the shape of its echo in range, where
-    // they lie on one plane, replaces its echoes (appended from `first`; their energy kept).
+    // they lie on one plane, replaces its echoes (appended from `first`).
     thread_local std::vector<RangeSample> samples;
-    thread_local std::vector<RangeSlice> slices;
     auto resolve_in_range = [&](int side, double share, double spread, std::size_t first) {
         samples.clear();
         for (const Point& q : points)
             if (q.side == side && q.seen.hit) samples.push_back({q.offset, q.seen.echo.range_m});
         for (std::size_t k = 0; k < offsets.size(); ++k)
             if (node_side[k] == side && seen[k].hit) samples.push_back({offsets[k], seen[k].echo.range_m});
-        const std::optional<RangePlane> plane = fit_range_plane(samples, r_max, std::max(pulse_sigma_m_, kPlaneFit * spread));
-        if (!plane) return;
-        double energy = 0.0;
-        for (std::size_t k = first; k < out.surface.size(); ++k) energy += out.surface[k].energy_j;
-        // A side that cannot reach the threshold on its own (ground grazed over tens of metres)
-        // takes one echo of its profile's mean and spread. No part of the side is denser in range than the whole beam's marginal
-        // across the gradient g, 1 / (sqrt(2 pi) sigma) per radian: its echo peaks below the whole
-        // footprint's energy on that surface in one pulse times sigma_r / (g sigma); failing that,
-        // below its own densest slice's energy per metre times sqrt(2 pi) sigma_r.
-        const double sigma = 0.5 * footprint_.waist_rad();
-        const double reach = kUndetectable * threshold_energy_j(0.0);
-        const ChordSide chord{normal, distance, side == cap_side};
-        slices.clear();
-        const bool bright = energy / share * pulse_sigma_m_ / (plane->per_rad.norm() * sigma) >= reach;
-        const double depth = bright ? std::max(pulse_sigma_m_, spread / kSlicesPerSpread) : std::numeric_limits<double>::infinity();
-        if (!range_profile(*plane, chord, r_max, sigma, depth, slices)) return;
-        // The profile's moments, and its densest slice (share per metre of range).
-        RangeSlice one{Eigen::Vector2d::Zero(), 0.0, 1.0, 0.0};
-        double densest = 0.0;
-        for (const RangeSlice& slice : slices) {
-            one.offset += slice.share * slice.offset;
-            one.range_m += slice.share * slice.range_m;
-            densest = std::max(densest, slice.share / (std::sqrt(12.0) * slice.spread_m));
-        }
-        for (const RangeSlice& slice : slices)
-            one.spread_m += slice.share * (std::pow(slice.range_m - one.range_m, 2) + slice.spread_m * slice.spread_m);
-        one.spread_m = std::sqrt(one.spread_m);
-        // One echo of those moments where the side cannot reach the threshold on its own.
-        const double root_2pi = std::sqrt(2.0 * std::numbers::pi);
-        if (!bright || energy * densest * pulse_sigma_m_ * root_2pi < reach)
-            slices.assign(1, one);
-        // The slices lie on the plane fitted: its normal, so that they make one surface however far
-        // apart (gather_surfaces), as the side's echoes did.
-        auto on_plane = [&](double x, double y) {
-            return Eigen::Vector3d((plane->at_axis_m + plane->per_rad.dot(Eigen::Vector2d(x, y))) * in_beam(x, y));
-        };
-        const double step = 0.1 * r_max;
-        const Eigen::Vector3d in_plane_normal = (on_plane(step, 0.0) - on_plane(0.0, 0.0)).cross(on_plane(0.0, step) - on_plane(0.0, 0.0));
-        SurfaceEcho like = out.surface[first];
-        if (in_plane_normal.norm() > 0.0) like.normal_world = (aim.world_from_beam * in_plane_normal.normalized()).cast<float>();
-        out.surface.resize(first);
-        for (const RangeSlice& slice : slices) {
-            SurfaceEcho e = like;
-            e.range_m = slice.range_m;
-            e.weight = share * slice.share;
-            e.energy_j = energy * slice.share;
-            e.spread_m = slice.spread_m;
-            // (Along (1, x, y) unnormalised: a footprint's offsets are milliradians, so the point
-            // is off by the range times their square, well inside what gather_surfaces allows.)
-            e.point_world = origin + slice.range_m * (aim.world_from_beam * Eigen::Vector3d(1.0, slice.offset.x(), slice.offset.y() * ellipticity_));
-            out.surface.push_back(e);
-        }
+        profile_in_range(aim, samples, {normal, distance, side == cap_side}, share, spread, first, out);
     };
     for (int side = 0; side < 2; ++side) {
         const auto s = static_cast<std::size_t>(side);
@@ -1520,6 +1468,62 @@ bool FootprintIntegrator::straight_edge(const BeamAim& aim, std::span<const Prob
         if (spread > pulse_sigma_m_) resolve_in_range(side, share, spread, first);
     }
     return true;
+}
+
+void FootprintIntegrator::profile_in_range(const BeamAim& aim, std::span<const RangeSample> samples, const ChordSide& side,
+                                           double share, double spread_m, std::size_t first, BeamEchoes& out) const {
+    const double r_max = footprint_.max_offset_rad();
+    const std::optional<RangePlane> plane = fit_range_plane(samples, r_max, std::max(pulse_sigma_m_, kPlaneFit * spread_m));
+    if (!plane) return;
+    double energy = 0.0;
+    for (std::size_t k = first; k < out.surface.size(); ++k) energy += out.surface[k].energy_j;
+    // Fine slices only where the side could reach the threshold on its own. No part of it is
+    // denser in range than the whole beam's marginal across the gradient g, 1 / (sqrt(2 pi) sigma)
+    // per radian: its echo peaks below the whole footprint's energy on that surface in one pulse
+    // times sigma_r / (g sigma); failing that, below its densest slice's energy per metre times
+    // sqrt(2 pi) sigma_r. Otherwise (ground grazed over tens of metres) one echo of the profile's
+    // mean range and spread.
+    const double sigma = 0.5 * footprint_.waist_rad();
+    const double reach = kUndetectable * threshold_energy_j(0.0);
+    thread_local std::vector<RangeSlice> slices;
+    slices.clear();
+    const bool bright = energy / share * pulse_sigma_m_ / (plane->per_rad.norm() * sigma) >= reach;
+    const double depth = bright ? std::max(pulse_sigma_m_, spread_m / kSlicesPerSpread) : std::numeric_limits<double>::infinity();
+    if (!range_profile(*plane, side, r_max, sigma, depth, slices)) return;
+    RangeSlice one{Eigen::Vector2d::Zero(), 0.0, 1.0, 0.0};
+    double densest = 0.0;  // share per metre of range
+    for (const RangeSlice& slice : slices) {
+        one.offset += slice.share * slice.offset;
+        one.range_m += slice.share * slice.range_m;
+        densest = std::max(densest, slice.share / (std::sqrt(12.0) * slice.spread_m));
+    }
+    for (const RangeSlice& slice : slices)
+        one.spread_m += slice.share * (std::pow(slice.range_m - one.range_m, 2) + slice.spread_m * slice.spread_m);
+    one.spread_m = std::sqrt(one.spread_m);
+    if (!bright || energy * densest * pulse_sigma_m_ * std::sqrt(2.0 * std::numbers::pi) < reach) slices.assign(1, one);
+    // The slices lie on the plane fitted: its normal, so that they make one surface however far
+    // apart (gather_surfaces), as the echoes they replace did.
+    auto on_plane = [&](double x, double y) {
+        return Eigen::Vector3d((plane->at_axis_m + plane->per_rad.dot(Eigen::Vector2d(x, y))) * in_beam(x, y));
+    };
+    const double step = 0.1 * r_max;
+    const Eigen::Vector3d in_plane_normal = (on_plane(step, 0.0) - on_plane(0.0, 0.0)).cross(on_plane(0.0, step) - on_plane(0.0, 0.0));
+    SurfaceEcho like = out.surface[first];
+    if (in_plane_normal.norm() > 0.0) like.normal_world = (aim.world_from_beam * in_plane_normal.normalized()).cast<float>();
+    like.sample = 0;
+    out.surface.resize(first);
+    const Eigen::Vector3d& origin = scenario_.mount.position_world;
+    for (const RangeSlice& slice : slices) {
+        SurfaceEcho e = like;
+        e.range_m = slice.range_m;
+        e.weight = share * slice.share;
+        e.energy_j = energy * slice.share;
+        e.spread_m = slice.spread_m;
+        // (Along (1, x, y) unnormalised: a footprint's offsets are milliradians, so the point is
+        // off by the range times their square, well inside what gather_surfaces allows.)
+        e.point_world = origin + slice.range_m * (aim.world_from_beam * Eigen::Vector3d(1.0, slice.offset.x(), slice.offset.y() * ellipticity_));
+        out.surface.push_back(e);
+    }
 }
 
 FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, std::span<const Probe> probes,

@@ -11,6 +11,7 @@
 
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/sensor_model/beam_receiver.h"
+#include "ladarsim/sensor_model/edge_profile.h"
 #include "ladarsim/sensor_model/footprint.h"
 #include "ladarsim/sensor_model/scenario.h"
 
@@ -189,6 +190,12 @@ private:
     /// a corner, a curved edge, more surfaces.
     bool straight_edge(const BeamAim& aim, std::span<const Probe* const> witnesses, BeamEchoes& out,
                        const Region* sampled = nullptr) const;
+    /// Replaces one surface's echoes in `out` (from `first` on: `share` of the beam, their points
+    /// `samples` spreading `spread_m` in range) by the range profile of the plane those lie on
+    /// over `side` of the footprint (edge_profile.h), their energy kept; nothing changes where
+    /// they do not lie on one plane.
+    void profile_in_range(const BeamAim& aim, std::span<const RangeSample> samples, const ChordSide& side, double share,
+                          double spread_m, std::size_t first, BeamEchoes& out) const;
     /// Echo energy at which a pulse stretched by a range spread of `spread_m` peaks at the threshold.
     double threshold_energy_j(double spread_m) const;
 
