@@ -13,7 +13,6 @@ namespace {
 /// The samples must spread over at least this fraction of the footprint's radius across every
 /// direction (the square root of their covariance's smaller eigenvalue) for a plane to be fitted.
 constexpr double kMinSpan = 0.1;
-/// Slices of a side at most; midpoints of the rule along each slice.
 /// Lines of constant range (a midpoint rule along the gradient) across the footprint: the most slices.
 constexpr int kLines = 128;
 /// A slice is at most 1 / kMinSlices of the footprint deep.
@@ -107,8 +106,8 @@ bool range_profile(const RangePlane& plane, const ChordSide& side, double max_of
         densest = std::max(densest, mass[k]);
     }
     if (!(total > 0.0)) return false;
-    // Lines grouped into slices `resolution_m` deep where the side is dense (a quarter of its
-    // densest line's mass and more); in its tails, slices holding as much mass as a dense one
+    // Lines grouped into slices `resolution_m` deep where the side is dense (half its densest
+    // line's mass and more); in its tails, slices holding as much mass as a dense one
     // (deeper: fewer echoes), but no deeper than an eighth of the footprint's depth. (Growing the
     // slices from the densest line on blurred the peak beside it: gather_surfaces stretches each
     // echo half-way to its neighbours.)
@@ -140,4 +139,5 @@ bool range_profile(const RangePlane& plane, const ChordSide& side, double max_of
     }
     return true;
 }
+
 }  // namespace ladarsim::sensor_model
