@@ -57,7 +57,10 @@ void check_target(const Sequence& s, std::uint32_t target, const std::filesystem
         for (const auto& o : f.objects) objects.emplace(o.object_id, o.object_class);
     if (!objects.count(target)) {
         std::string known;
-        for (const auto& [id, cls] : objects) known += (known.empty() ? "" : ", ") + std::to_string(id) + " (" + cls + ")";
+        for (const auto& [id, cls] : objects) {
+            if (!known.empty()) known += ", ";
+            known += std::to_string(id) + " (" + cls + ")";
+        }
         throw InputError(truth_file.string(), field, "no object " + std::to_string(target) + " in the ground truth; its objects are " +
                                                          (known.empty() ? "none" : known));
     }

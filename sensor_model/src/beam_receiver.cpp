@@ -199,13 +199,13 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
     if (returns.size() > 1) {
         switch (sensor_.receiver.reported_returns) {
             case ReportedReturns::all: break;
-            case ReportedReturns::first: returns.resize(1); break;
+            case ReportedReturns::first: returns.erase(returns.begin() + 1, returns.end()); break;
             case ReportedReturns::last: returns.erase(returns.begin(), returns.end() - 1); break;
             case ReportedReturns::strongest: {
                 const auto strongest = std::max_element(returns.begin(), returns.end(),
                     [](const DetectedReturn& a, const DetectedReturn& b) { return a.energy_j < b.energy_j; });
-                const DetectedReturn kept = *strongest;
-                returns.assign(1, kept);
+                std::iter_swap(returns.begin(), strongest);
+                returns.erase(returns.begin() + 1, returns.end());
                 break;
             }
             case ReportedReturns::first_and_last: {

@@ -33,7 +33,7 @@ inline void put_be16(Bytes& b, std::uint16_t v) {
 inline void write_pcap(const std::filesystem::path& file, const std::vector<PcapRecord>& records, std::uint32_t link_type = 1) {
     Bytes b;
     put_le32(b, 0xa1b2c3d4u);
-    b.insert(b.end(), {2, 0, 4, 0});  // version 2.4
+    for (const unsigned char c : {2, 0, 4, 0}) b.push_back(c);  // version 2.4
     put_le32(b, 0);                   // time zone
     put_le32(b, 0);                   // time stamp accuracy
     put_le32(b, 65535);               // snap length
