@@ -216,6 +216,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
             r *= q;
         }
     };
+    double q_sigma = -1.0, q_last = 0.0;  // exp(-b^2 / sigma^2) of the last width: slices share one
     auto recurrence = [&](std::size_t i) {
         const Echo& e = echoes[i];
         const PulseShape& shape = shapes[i];
@@ -229,7 +230,11 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
         const double inv_var = 1.0 / (shape.sigma_s * shape.sigma_s);
         c.g = e.energy_j * shape.at(t);
         c.r = std::exp(-(2.0 * t * bin_s_ + bin_s_ * bin_s_) * 0.5 * inv_var);
-        c.q = std::exp(-bin_s_ * bin_s_ * inv_var);
+        if (shape.sigma_s != q_sigma) {
+            q_sigma = shape.sigma_s;
+            q_last = std::exp(-bin_s_ * bin_s_ * inv_var);
+        }
+        c.q = q_last;
         return c;
     };
     // Two echoes at a time: their recurrences are independent chains of multiplications, and each
