@@ -378,6 +378,7 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
       map_cells_(scenario.sensor.transmitter.divergence_mrad * kMradToRad, static_cast<int>(outline_samples_),
                  scenario.render.footprint_truncation) {
     small_object_rad_ = kSmallObjectFootprints * footprint_.max_offset_rad();
+    threshold_j_ = threshold_energy_j(0.0);
     if (!adaptive_) return;
     // Seed candidates of each mesh object: centroids of up to kSeedCandidates of its triangles,
     // spread evenly over the mesh's list.
@@ -595,7 +596,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     // targets, is one plane patch when the probes agree, and refined otherwise (always in media).
     thread_local Region target_region, rest_region;
     if (targets) {
-        const bool bright_lone = targets_met == 1 && brightest_j >= kBrightTargetThresholds * threshold_energy_j(0.0);
+        const bool bright_lone = targets_met == 1 && brightest_j >= kBrightTargetThresholds * threshold_j_;
         double sampled = 0.0;
         const std::optional<double> shared =
             targets_met == 1 && !media && target_lattice_ ? target_lattice_->gather(aim, lone_id, *targets, out) : std::nullopt;
@@ -1113,7 +1114,7 @@ bool FootprintIntegrator::settled(std::span<Region* const> regions, std::span<co
             }
             // Unseen: settled only if even a whole cell of it could not be detected.
             if (probe.hit && probe_surface < 0 &&
-                kConfidenceSigmas * 0.5 * n.weight * r.scale * probe.echo.energy_j > tolerance_ * threshold_energy_j(0.0))
+                kConfidenceSigmas * 0.5 * n.weight * r.scale * probe.echo.energy_j > tolerance_ * threshold_j_)
                 n.urgent = true;
         }
     }
@@ -1484,7 +1485,7 @@ void FootprintIntegrator::profile_in_range(const BeamAim& aim, std::span<const R
     // sqrt(2 pi) sigma_r. Otherwise (ground grazed over tens of metres) one echo of the profile's
     // mean range and spread.
     const double sigma = 0.5 * footprint_.waist_rad();
-    const double reach = kUndetectable * threshold_energy_j(0.0);
+    const double reach = kUndetectable * threshold_j_;
     thread_local std::vector<RangeSlice> slices;
     slices.clear();
     const bool bright = energy / share * pulse_sigma_m_ / (plane->per_rad.norm() * sigma) >= reach;

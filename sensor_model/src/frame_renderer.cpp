@@ -68,7 +68,7 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
 namespace {
 
 /// Probes (neighbours' axes) inside a footprint per footprint radius along each axis, at most.
-/// The default scenario with 8: 690 k beams/s on one thread; with 4: 11 % faster, the bench's
+/// The default scenario with 8: 690 k beams/s on one thread; with 4: 13 % faster, the bench's
 /// accuracy tables unchanged but for a tenth of a percent here and there.
 constexpr int kProbesPerRadius = 4;
 
@@ -105,8 +105,13 @@ void FrameRenderer::find_neighbours() {
     // a beam beside the raster's border keeps the probes its neighbour would (a corner's sliver at
     // its rim showed to the border column's axis, not to a grid counted from the beam), and the
     // border lines and columns themselves. Sentinels stay dense.
-    probe_stride_columns_ = stride_columns == 1 ? std::max(1, (reach_columns + kProbesPerRadius - 1) / kProbesPerRadius) : 1;
-    probe_stride_rows_ = stride_rows == 1 ? std::max(1, (reach_rows + kProbesPerRadius - 1) / kProbesPerRadius) : 1;
+    const int probe_columns = stride_columns == 1 ? std::max(1, (reach_columns + kProbesPerRadius - 1) / kProbesPerRadius) : 1;
+    const int probe_rows = stride_rows == 1 ? std::max(1, (reach_rows + kProbesPerRadius - 1) / kProbesPerRadius) : 1;
+    probe_axis_.assign(static_cast<std::size_t>(raster_.beam_count()), 0);
+    for (int row = 0; row < raster_.rows(); ++row)
+        for (int column = 0; column < raster_.columns(); ++column)
+            probe_axis_[static_cast<std::size_t>(row * raster_.columns() + column)] =
+                (row % probe_rows == 0 || row == raster_.rows() - 1) && (column % probe_columns == 0 || column == raster_.columns() - 1);
     // Where no neighbour reaches half-way to the footprint's edge in some direction (the raster's
     // border, or a raster sparser than its footprints), an extra probe at 3/4 of the way does.
     const double reach = 0.75 * r_max;
@@ -120,7 +125,7 @@ void FrameRenderer::find_neighbours() {
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = column + n.d_column;
                 if (r < 0 || r >= raster_.rows() || c < 0 || c >= raster_.columns()) continue;
-                if (!n.inside || !probe_axis(r, c)) continue;  // a sentinel, or thinned out
+                if (!n.inside || !probe_axis_[static_cast<std::size_t>(r * raster_.columns() + c)]) continue;  // a sentinel, or thinned out
                 for (int k = 0; k < 4; ++k)
                     if (Eigen::Vector2d(n.x_rad, n.y_rad).dot(extra_offsets_[k].normalized()) >= 0.5 * r_max)
                         covered |= static_cast<std::uint8_t>(1u << k);
@@ -234,8 +239,9 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
             probes.push_back({0.0, 0.0, 1.0, a.world_from_beam.col(0), &axis_hit_[cell]});
             for (const Neighbour& n : neighbours_) {
                 const int r = row + n.d_row, c = beam.column + n.d_column;
-                if (r < 0 || r >= rows || c < 0 || c >= columns || (n.inside && !probe_axis(r, c))) continue;
+                if (r < 0 || r >= rows || c < 0 || c >= columns) continue;
                 const std::size_t other = static_cast<std::size_t>(r * columns + c);
+                if (n.inside && !probe_axis_[other]) continue;
                 probes.push_back({n.x_rad, n.y_rad, n.irradiance, aims_[other].world_from_beam.col(0), &axis_hit_[other]});
             }
             for (int k = 0; k < 4; ++k) {

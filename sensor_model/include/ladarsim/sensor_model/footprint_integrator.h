@@ -208,6 +208,7 @@ private:
     double ellipticity_;
     double small_object_rad_;   ///< objects subtending less than this are sampled explicitly
     double pulse_sigma_m_;      ///< the pulse's standard deviation, in range
+    double threshold_j_ = 0.0;  ///< threshold_energy_j(0): an unstretched pulse's, found once
     int grid_base_;             ///< cells along each axis of a bright lone target's grid (grid_base_^2 ~ outline_samples_)
     double aperture_radius2_;   ///< r_a^2 of the range equation's view factor
     Footprint footprint_;

@@ -54,12 +54,6 @@ private:
         double irradiance;
         bool inside;  ///< within the footprint's truncation: a probe, not a sentinel
     };
-    /// Whether the axis of raster cell (row, column) is a probe of the beams whose footprints it
-    /// falls in (the raster-wide grid they are thinned to, and its borders).
-    bool probe_axis(int row, int column) const {
-        return (row % probe_stride_rows_ == 0 || row == raster_.rows() - 1) &&
-               (column % probe_stride_columns_ == 0 || column == raster_.columns() - 1);
-    }
     /// `gimbal`: the pointing's rotation, AngleAxis(az, z) * AngleAxis(-el, y).
     BeamAim aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, double frame_start_s) const;
     void find_neighbours();
@@ -84,7 +78,9 @@ private:
     std::unique_ptr<TargetLattice> target_lattice_;
     std::vector<GimbalPointing> pointing_by_frame_;
     std::vector<Neighbour> neighbours_;
-    int probe_stride_rows_ = 1, probe_stride_columns_ = 1;
+    /// By raster cell (row, column): whether its axis is a probe of the beams whose footprints it
+    /// falls in (the raster-wide grid they are thinned to, and its borders; sentinels are not).
+    std::vector<std::uint8_t> probe_axis_;
     /// By (row, step): each beam's offset rotations, AngleAxis(az_offset, z) and
     /// AngleAxis(-el_offset, y), found once (a frame composes them with the gimbal's exactly as
     /// sensor_from_beam does, without its four sines and cosines per beam).
