@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "ladarsim/sensor_model/counter_random.h"
+#include "ladarsim/sensor_model/curved_patch.h"
 #include "ladarsim/sensor_model/edge_profile.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "ladarsim/sensor_model/range_equation.h"
@@ -1573,7 +1574,7 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     for (std::size_t k = 0; k < used.size(); ++k) {
         const Probe& p = *used[k];
         const Eigen::Vector3d& point = p.hit->point_world;
-        if (std::abs(normal.dot(point - centroid)) > gap) return Patch::mixed;
+        if (std::abs(normal.dot(point - centroid)) > gap) return curved_patch(aim, used, excluded, weight, normal, out);
         const double nd = normal.dot(p.direction_world);
         if (std::abs(nd) < 1e-9) return Patch::mixed;
         // What the plane predicts the probe saw: reflectance |nd| / range^2 at the range
@@ -1617,6 +1618,48 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
                           (range * range + aperture_radius2_) * e_sum / nodes;
     out.surface.push_back({range, weight, energy, spread, object_id, origin + range * aim.world_from_beam.col(0),
                            normal.cast<float>()});
+    return Patch::plane;
+}
+
+FootprintIntegrator::Patch FootprintIntegrator::curved_patch(const BeamAim& aim, std::span<const Probe* const> used,
+                                                             const std::optional<FootprintRect>& excluded, double weight,
+                                                             const Eigen::Vector3d& normal, BeamEchoes& out) const {
+    // One surface: the probes, in range order, each on the tangent planes of the next (as the
+    // sub-rays of one return are), of one material within the contrast a cell tolerates.
+    const double gap = scenario_.sensor.receiver.return_gap_m;
+    thread_local std::vector<SurfaceEcho> chain;
+    thread_local std::vector<SurfaceSample> samples;
+    chain.clear();
+    samples.clear();
+    float lo = used.front()->hit->hit->reflectance, hi = lo;
+    for (const Probe* p : used) {
+        const raytrace::Hit& h = *p->hit->hit;
+        lo = std::min(lo, h.reflectance);
+        hi = std::max(hi, h.reflectance);
+        chain.push_back({h.range_m, 0.0, 0.0, 0.0, h.object_id, p->hit->point_world, h.normal_world, 0});
+        samples.push_back({p->x_rad, p->y_rad, p->irradiance, h.range_m, p->hit->seen});
+    }
+    if (hi > kMaterialContrast * lo) return Patch::mixed;
+    std::sort(chain.begin(), chain.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
+    for (std::size_t k = 1; k < chain.size(); ++k)
+        if (!same_surface(chain[k - 1], chain[k], gap)) return Patch::mixed;
+    thread_local std::vector<Eigen::Vector2d> nodes;
+    nodes.clear();
+    for (std::size_t k = 0; k < quadrature_x_.size(); ++k)
+        if (!(excluded && footprint_.contains(*excluded, quadrature_x_[k], quadrature_y_[k]))) nodes.emplace_back(quadrature_x_[k], quadrature_y_[k]);
+    double g = 0.0, gr = 0.0, gr2 = 0.0;
+    for (const SurfaceSample& q : samples) {
+        g += q.irradiance;
+        gr += q.irradiance * q.range_m;
+        gr2 += q.irradiance * q.range_m * q.range_m;
+    }
+    const double spread = std::sqrt(std::max(0.0, gr2 / g - (gr / g) * (gr / g)));
+    const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes, footprint_.max_offset_rad(), std::max(gap, kPlaneFit * spread));
+    if (!patch || patch->range_m > scenario_.sensor.receiver.max_range_m) return Patch::mixed;
+    const double range = patch->range_m;
+    const double energy = echo_energy_j(weight, 1.0, 1.0, range, 1.0) * (range * range + aperture_radius2_) * patch->seen;
+    out.surface.push_back({range, weight, energy, patch->spread_m, chain.front().object_id,
+                           scenario_.mount.position_world + range * aim.world_from_beam.col(0), normal.cast<float>()});
     return Patch::plane;
 }
 
