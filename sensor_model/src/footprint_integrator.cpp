@@ -1626,6 +1626,9 @@ FootprintIntegrator::Patch FootprintIntegrator::curved_patch(const BeamAim& aim,
                                                              const Eigen::Vector3d& normal, BeamEchoes& out) const {
     // One surface: the probes, in range order, each on the tangent planes of the next (as the
     // sub-rays of one return are), of one material within the contrast a cell tolerates.
+    // A recorded map's discs overlap and tilt at random: its returns' structure in range is what
+    // its footprints' sub-rays are for (refine), not a surface to fit.
+    if (used.front()->hit->hit->object_id == scene::kBackgroundObjectId) return Patch::mixed;
     const double gap = scenario_.sensor.receiver.return_gap_m;
     thread_local std::vector<SurfaceEcho> chain;
     thread_local std::vector<SurfaceSample> samples;
