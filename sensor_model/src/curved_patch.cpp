@@ -22,19 +22,17 @@ constexpr double kMinPivot = 1e-6;
 
 }  // namespace
 
-std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> samples, std::span<const Eigen::Vector2d> nodes,
+std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> samples, std::span<const PatchNode> nodes,
                                             double r_max_rad, double range_tolerance_m) {
     if (samples.size() < 6 || nodes.empty()) return std::nullopt;
+    // One smooth surface: the range a quadratic of the offsets, every sample near it.
     Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
-    double g_sum = 0.0;
     for (const SurfaceSample& s : samples) {
         const Basis b = basis(s.x_rad, s.y_rad, r_max_rad);
         normal.selfadjointView<Eigen::Lower>().rankUpdate(b, s.irradiance);
         rhs += s.irradiance * s.range_m * b;
-        g_sum += s.irradiance;
     }
-    if (!(g_sum > 0.0)) return std::nullopt;
     normal = normal.selfadjointView<Eigen::Lower>();
     // Scaled to a unit diagonal, so that the pivots measure how well each direction is determined.
     const Basis scale = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
@@ -44,11 +42,8 @@ std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> sampl
     const Eigen::Matrix<double, 6, 1> coefficients = scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * rhs);
     for (const SurfaceSample& s : samples)
         if (std::abs(s.range_m - basis(s.x_rad, s.y_rad, r_max_rad).dot(coefficients)) > range_tolerance_m) return std::nullopt;
-    // The echo between the samples: linear between neighbours along a line of samples, and between
-    // lines. Where it steps (a change of facet, so of cos(incidence)) somewhere between two samples,
-    // the step's place unknown, linear interpolation is its expectation; a quadratic through three
-    // lines of samples over- or undershoots it (the bench's horizon: the terrain's energy 1.24 %
-    // high against 4096 sub-rays, linear 1.01 %, refined cells 1.18 %).
+
+    // The samples by lines of equal elevation offset (the raster's), each by azimuth offset.
     thread_local std::vector<SurfaceSample> sorted;
     sorted.assign(samples.begin(), samples.end());
     std::sort(sorted.begin(), sorted.end(), [](const SurfaceSample& a, const SurfaceSample& b) {
@@ -65,36 +60,47 @@ std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> sampl
         lines.emplace_back(k, end);
         k = end;
     }
-    auto along = [&](const std::pair<std::size_t, std::size_t>& line, double x) {
+    // A line's sample nearest a node in azimuth.
+    auto nearest = [&](const std::pair<std::size_t, std::size_t>& line, double x) -> const SurfaceSample& {
         const auto first = sorted.begin() + static_cast<std::ptrdiff_t>(line.first), end = sorted.begin() + static_cast<std::ptrdiff_t>(line.second);
         const auto right = std::upper_bound(first, end, x, [](double v, const SurfaceSample& q) { return v < q.x_rad; });
-        if (right == first) return first->seen;
-        if (right == end) return (end - 1)->seen;
-        const auto left = right - 1;
-        const double t = (x - left->x_rad) / (right->x_rad - left->x_rad);
-        return left->seen + t * (right->seen - left->seen);
+        if (right == first) return *first;
+        if (right == end || x - (right - 1)->x_rad <= right->x_rad - x) return *(right - 1);
+        return *right;
     };
-    auto seen_at = [&](double x, double y) {
-        const auto above = std::upper_bound(lines.begin(), lines.end(), y,
-                                            [&](double v, const std::pair<std::size_t, std::size_t>& l) { return v < sorted[l.first].y_rad; });
-        if (above == lines.begin()) return along(*above, x);
-        if (above == lines.end()) return along(*(above - 1), x);
-        const auto below = above - 1;
-        const double y0 = sorted[below->first].y_rad, y1 = sorted[above->first].y_rad;
-        const double t = (y - y0) / (y1 - y0);
-        return (1.0 - t) * along(*below, x) + t * along(*above, x);
+    // Range along `d` to the plane of the facet `s` met.
+    auto range_on = [](const SurfaceSample& s, const Eigen::Vector3d& d) {
+        const double nd = s.normal.dot(d);
+        return std::abs(nd) > 1e-9 ? s.range_m * s.normal.dot(s.direction) / nd : -1.0;
     };
     double e_sum = 0.0, er_sum = 0.0, er2_sum = 0.0;
-    for (const Eigen::Vector2d& n : nodes) {
-        const double range = basis(n.x(), n.y(), r_max_rad).dot(coefficients), seen = seen_at(n.x(), n.y());
-        if (!(range > 0.0) || !(seen > 0.0)) return std::nullopt;
+    for (const PatchNode& n : nodes) {
+        const auto above = std::upper_bound(lines.begin(), lines.end(), n.y_rad,
+                                            [&](double v, const std::pair<std::size_t, std::size_t>& l) { return v < sorted[l.first].y_rad; });
+        const SurfaceSample* facet = nullptr;
+        double range = -1.0;
+        if (above == lines.begin() || above == lines.end()) {
+            facet = &nearest(above == lines.begin() ? *above : *(above - 1), n.x_rad);
+            range = range_on(*facet, n.direction);
+        } else {
+            const SurfaceSample &a = nearest(*(above - 1), n.x_rad), &b = nearest(*above, n.x_rad);
+            const double ra = range_on(a, n.direction), rb = range_on(b, n.direction);
+            // Folded towards the sensor where b's plane lies behind a's own point (and a's behind
+            // b's): the surface is then the nearer of the two planes; folded away, the farther.
+            const bool towards = range_on(b, a.direction) >= a.range_m;
+            const bool nearer = towards ? ra <= rb : ra >= rb;
+            facet = nearer ? &a : &b;
+            range = nearer ? ra : rb;
+        }
+        if (!(range > 0.0)) return std::nullopt;
+        const double seen = facet->reflectance * std::abs(facet->normal.dot(n.direction)) / (range * range);
         e_sum += seen;
         er_sum += seen * range;
         er2_sum += seen * range * range;
     }
-    const double mean_seen = e_sum / static_cast<double>(nodes.size());
+    if (!(e_sum > 0.0)) return std::nullopt;
     const double range = er_sum / e_sum;
-    return CurvedPatch{range, std::sqrt(std::max(0.0, er2_sum / e_sum - range * range)), mean_seen};
+    return CurvedPatch{range, std::sqrt(std::max(0.0, er2_sum / e_sum - range * range)), e_sum / static_cast<double>(nodes.size())};
 }
 
 }  // namespace ladarsim::sensor_model

@@ -24,6 +24,10 @@ namespace {
 constexpr double kMradToRad = 1e-3;
 constexpr int kQuadrature = 16; // directions integrating a plane patch (no rays)
 constexpr int kEdgeQuadrature = 8;  // sub-rays spreading each side of a straight edge's share
+/// Directions integrating a curved patch (no rays). Each takes one facet whole where the facets
+/// fold between two lines of probes: with 16 (a plane patch's) a hill's crown grazed at 1 and 2 km
+/// came out 6.5 % short in range spread, with 32 2.6 % (64: 1.1 %, the horizon 3 % slower).
+constexpr int kCurvedQuadrature = 32;
 /// A side of a straight edge is taken to lie on one plane where its points leave the plane fitted to
 /// them by at most this fraction of their spread in range (RMS), or the pulse's width.
 constexpr double kPlaneFit = 0.1;
@@ -401,6 +405,9 @@ FootprintIntegrator::FootprintIntegrator(const Scenario& scenario, const raytrac
         quadrature_x_.push_back(s.offset_x_rad);
         quadrature_y_.push_back(s.offset_y_rad);
     }
+    std::vector<SubRay> curved_nodes(kCurvedQuadrature);
+    Footprint(footprint_.waist_rad() * 2.0, kCurvedQuadrature, scenario.render.footprint_truncation).fixed(curved_nodes);
+    for (const SubRay& s : curved_nodes) curved_nodes_.push_back({s.offset_x_rad, s.offset_y_rad, in_beam(s.offset_x_rad, s.offset_y_rad)});
     std::vector<SubRay> edge_nodes(kEdgeQuadrature);
     Footprint(footprint_.waist_rad() * 2.0, kEdgeQuadrature, scenario.render.footprint_truncation).fixed(edge_nodes);
     for (const SubRay& s : edge_nodes) edge_quadrature_.emplace_back(s.offset_x_rad, s.offset_y_rad);
@@ -1624,38 +1631,44 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
 FootprintIntegrator::Patch FootprintIntegrator::curved_patch(const BeamAim& aim, std::span<const Probe* const> used,
                                                              const std::optional<FootprintRect>& excluded, double weight,
                                                              const Eigen::Vector3d& normal, BeamEchoes& out) const {
-    // One surface: the probes, in range order, each on the tangent planes of the next (as the
-    // sub-rays of one return are), of one material within the contrast a cell tolerates.
     // A recorded map's discs overlap and tilt at random: its returns' structure in range is what
     // its footprints' sub-rays are for (refine), not a surface to fit.
     if (used.front()->hit->hit->object_id == scene::kBackgroundObjectId) return Patch::mixed;
+    // One surface: the probes, in range order, each on the tangent planes of the next (as the
+    // sub-rays of one return are), of one material within the contrast a cell tolerates.
     const double gap = scenario_.sensor.receiver.return_gap_m;
+    const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     thread_local std::vector<SurfaceEcho> chain;
     thread_local std::vector<SurfaceSample> samples;
     chain.clear();
     samples.clear();
     float lo = used.front()->hit->hit->reflectance, hi = lo;
+    double g = 0.0, gr = 0.0, gr2 = 0.0;
     for (const Probe* p : used) {
         const raytrace::Hit& h = *p->hit->hit;
         lo = std::min(lo, h.reflectance);
         hi = std::max(hi, h.reflectance);
         chain.push_back({h.range_m, 0.0, 0.0, 0.0, h.object_id, p->hit->point_world, h.normal_world, 0});
-        samples.push_back({p->x_rad, p->y_rad, p->irradiance, h.range_m, p->hit->seen});
+        samples.push_back({p->x_rad, p->y_rad, p->irradiance, h.range_m, beam_from_world * p->direction_world,
+                           beam_from_world * h.normal_world.cast<double>(), h.reflectance});
+        g += p->irradiance;
+        gr += p->irradiance * h.range_m;
+        gr2 += p->irradiance * h.range_m * h.range_m;
     }
     if (hi > kMaterialContrast * lo) return Patch::mixed;
     std::sort(chain.begin(), chain.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
     for (std::size_t k = 1; k < chain.size(); ++k)
         if (!same_surface(chain[k - 1], chain[k], gap)) return Patch::mixed;
-    thread_local std::vector<Eigen::Vector2d> nodes;
-    nodes.clear();
-    for (std::size_t k = 0; k < quadrature_x_.size(); ++k)
-        if (!(excluded && footprint_.contains(*excluded, quadrature_x_[k], quadrature_y_[k]))) nodes.emplace_back(quadrature_x_[k], quadrature_y_[k]);
-    double g = 0.0, gr = 0.0, gr2 = 0.0;
-    for (const SurfaceSample& q : samples) {
-        g += q.irradiance;
-        gr += q.irradiance * q.range_m;
-        gr2 += q.irradiance * q.range_m * q.range_m;
+    std::span<const PatchNode> nodes = curved_nodes_;
+    thread_local std::vector<PatchNode> kept;
+    if (excluded) {
+        kept.clear();
+        for (const PatchNode& n : curved_nodes_)
+            if (!footprint_.contains(*excluded, n.x_rad, n.y_rad)) kept.push_back(n);
+        nodes = kept;
     }
+    // The probes' points may leave the quadratic by a tenth of their spread in range (as a straight
+    // edge's side its plane), or the receiver's resolution.
     const double spread = std::sqrt(std::max(0.0, gr2 / g - (gr / g) * (gr / g)));
     const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes, footprint_.max_offset_rad(), std::max(gap, kPlaneFit * spread));
     if (!patch || patch->range_m > scenario_.sensor.receiver.max_range_m) return Patch::mixed;

@@ -31,14 +31,18 @@ struct Sphere {
         const Eigen::Vector3d d = Eigen::Vector3d(1.0, std::tan(x), std::tan(y)).normalized();
         return {std::cos(elevation) * d.x() - std::sin(elevation) * d.z(), d.y(), std::sin(elevation) * d.x() + std::cos(elevation) * d.z()};
     }
-    /// Range and reflectance cos(incidence) / range^2 along offsets (x, y); none when it misses.
-    std::optional<std::pair<double, double>> meet(double x, double y) const {
+    /// Range and the sphere's normal along offsets (x, y); none when it misses.
+    std::optional<std::pair<double, Eigen::Vector3d>> meet(double x, double y) const {
         const Eigen::Vector3d d = direction(x, y), c(distance, 0.0, 0.0);
         const double b = d.dot(c), disc = b * b - c.squaredNorm() + radius * radius;
         if (disc < 0.0) return std::nullopt;
         const double t = b - std::sqrt(disc);
-        const Eigen::Vector3d normal = (t * d - c) / radius;
-        return std::make_pair(t, kReflectance * std::abs(normal.dot(d)) / (t * t));
+        return std::make_pair(t, Eigen::Vector3d((t * d - c) / radius));
+    }
+    /// Reflectance cos(incidence) / range^2 along offsets (x, y), which must meet the sphere.
+    double seen(double x, double y) const {
+        const auto met = meet(x, y);
+        return kReflectance * std::abs(met->second.dot(direction(x, y))) / (met->first * met->first);
     }
 };
 
@@ -52,17 +56,19 @@ std::vector<SurfaceSample> probes(const Sphere& s) {
             if (x * x + y * y > kMaxOffset * kMaxOffset) continue;
             const auto met = s.meet(x, y);
             REQUIRE(met);
-            out.push_back({x, y, std::exp(-2.0 * (x * x + y * y) / (kWaist * kWaist)), met->first, met->second});
+            out.push_back({x, y, std::exp(-2.0 * (x * x + y * y) / (kWaist * kWaist)), met->first, s.direction(x, y), -met->second,
+                           kReflectance});
         }
     }
     return out;
 }
 
-std::vector<Eigen::Vector2d> nodes() {
-    std::vector<SubRay> cells(16);
-    Footprint(kDivergence, 16, 1.5).fixed(cells);
-    std::vector<Eigen::Vector2d> out;
-    for (const SubRay& c : cells) out.emplace_back(c.offset_x_rad, c.offset_y_rad);
+/// The integrator's nodes: 32 equal-energy cells' centres.
+std::vector<PatchNode> nodes(const Sphere& s) {
+    std::vector<SubRay> cells(32);
+    Footprint(kDivergence, 32, 1.5).fixed(cells);
+    std::vector<PatchNode> out;
+    for (const SubRay& c : cells) out.push_back({c.offset_x_rad, c.offset_y_rad, s.direction(c.offset_x_rad, c.offset_y_rad)});
     return out;
 }
 
@@ -93,10 +99,11 @@ CurvedPatch brute_force(const Sphere& s) {
                 ++misses;
                 continue;
             }
+            const double seen = s.seen(x, y);
             g_sum += g;
-            e_sum += g * met->second;
-            er_sum += g * met->second * met->first;
-            er2_sum += g * met->second * met->first * met->first;
+            e_sum += g * seen;
+            er_sum += g * seen * met->first;
+            er2_sum += g * seen * met->first * met->first;
         }
     }
     REQUIRE(misses == 0);
@@ -122,7 +129,7 @@ TEST_CASE("a curved surface grazed: the probes' quadratic and interpolated echo 
         const std::vector<SurfaceSample> samples = probes(sphere);
         REQUIRE(plane_misfit(samples) > 0.15);  // a plane patch would refuse it
         const CurvedPatch exact = brute_force(sphere);
-        const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes(), kMaxOffset, 0.15);
+        const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15);
         REQUIRE(patch);
         INFO("cos(incidence) " << cos_incidence << ": range " << patch->range_m << " against " << exact.range_m << ", spread "
                                << patch->spread_m << " against " << exact.spread_m << ", echo " << patch->seen << " against "
@@ -137,20 +144,20 @@ TEST_CASE("a curved patch is refused where the samples are not one smooth surfac
     const double impact = 20.0 * std::sqrt(1.0 - 0.25 * 0.25);
     const Sphere sphere{1000.0, 20.0, std::asin(impact / 1000.0)};
     std::vector<SurfaceSample> samples = probes(sphere);
-    REQUIRE(fit_curved_patch(samples, nodes(), kMaxOffset, 0.15));
+    REQUIRE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
 
     SECTION("a step of half a metre behind part of the row") {
         for (SurfaceSample& s : samples)
             if (s.y_rad == 0.0 && s.x_rad > 0.0) s.range_m += 0.5;
-        CHECK_FALSE(fit_curved_patch(samples, nodes(), kMaxOffset, 0.15));
+        CHECK_FALSE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
     }
     SECTION("one row of samples: the curvature across it is free") {
         std::erase_if(samples, [](const SurfaceSample& s) { return s.y_rad != 0.0; });
         REQUIRE(samples.size() >= 6);
-        CHECK_FALSE(fit_curved_patch(samples, nodes(), kMaxOffset, 0.15));
+        CHECK_FALSE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
     }
     SECTION("five samples") {
         samples.resize(5);
-        CHECK_FALSE(fit_curved_patch(samples, nodes(), kMaxOffset, 0.15));
+        CHECK_FALSE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
     }
 }

@@ -12,6 +12,7 @@
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/sensor_model/beam_receiver.h"
 #include "ladarsim/sensor_model/edge_profile.h"
+#include "ladarsim/sensor_model/curved_patch.h"
 #include "ladarsim/sensor_model/footprint.h"
 #include "ladarsim/sensor_model/scenario.h"
 
@@ -221,6 +222,7 @@ private:
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating a plane patch
     std::vector<double> quadrature_x_, quadrature_y_;
     std::vector<Eigen::Vector2d> edge_quadrature_;     ///< equal-energy cells spreading a straight edge's sides
+    std::vector<PatchNode> curved_nodes_;              ///< directions integrating a curved patch
     const SubRayLattice* lattice_ = nullptr;
     const TargetLattice* target_lattice_ = nullptr;
     std::unordered_map<std::uint32_t, TargetShape> target_shapes_;  ///< by object id
