@@ -3,45 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Cholesky>
-
 namespace ladarsim::sensor_model {
 
 namespace {
 
-using Basis = Eigen::Matrix<double, 6, 1>;
-
-Basis basis(double x_rad, double y_rad, double r_max_rad) {
-    const double u = x_rad / r_max_rad, v = y_rad / r_max_rad;
-    return (Basis() << 1.0, u, v, u * u, u * v, v * v).finished();
-}
-
-/// A pivot of the normalised normal equations below this: the samples do not fix that direction
-/// of the quadratic (three samples on a line leave its curvature across the line free).
-constexpr double kMinPivot = 1e-6;
+/// Samples on at least this many lines of the raster, so that the footprint's middle and both its
+/// sides in elevation have facets of their own (a single line would be extrapolated across it).
+constexpr std::size_t kMinLines = 3;
+constexpr std::size_t kMinSamples = 6;
 
 }  // namespace
 
 std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> samples, std::span<const PatchNode> nodes,
-                                            double r_max_rad, double range_tolerance_m) {
-    if (samples.size() < 6 || nodes.empty()) return std::nullopt;
-    // One smooth surface: the range a quadratic of the offsets, every sample near it.
-    Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
-    for (const SurfaceSample& s : samples) {
-        const Basis b = basis(s.x_rad, s.y_rad, r_max_rad);
-        normal.selfadjointView<Eigen::Lower>().rankUpdate(b, s.irradiance);
-        rhs += s.irradiance * s.range_m * b;
-    }
-    normal = normal.selfadjointView<Eigen::Lower>();
-    // Scaled to a unit diagonal, so that the pivots measure how well each direction is determined.
-    const Basis scale = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-    const Eigen::Matrix<double, 6, 6> scaled = scale.asDiagonal() * normal * scale.asDiagonal();
-    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(scaled);
-    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > kMinPivot)) return std::nullopt;
-    const Eigen::Matrix<double, 6, 1> coefficients = scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * rhs);
-    for (const SurfaceSample& s : samples)
-        if (std::abs(s.range_m - basis(s.x_rad, s.y_rad, r_max_rad).dot(coefficients)) > range_tolerance_m) return std::nullopt;
+                                            double r_max_rad, double coplanar_m) {
+    if (samples.size() < kMinSamples || nodes.empty()) return std::nullopt;
 
     // The samples by lines of equal elevation offset (the raster's), each by azimuth offset.
     thread_local std::vector<SurfaceSample> sorted;
@@ -60,6 +35,7 @@ std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> sampl
         lines.emplace_back(k, end);
         k = end;
     }
+    if (lines.size() < kMinLines) return std::nullopt;
     // A line's sample nearest a node in azimuth.
     auto nearest = [&](const std::pair<std::size_t, std::size_t>& line, double x) -> const SurfaceSample& {
         const auto first = sorted.begin() + static_cast<std::ptrdiff_t>(line.first), end = sorted.begin() + static_cast<std::ptrdiff_t>(line.second);
@@ -85,9 +61,14 @@ std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> sampl
         } else {
             const SurfaceSample &a = nearest(*(above - 1), n.x_rad), &b = nearest(*above, n.x_rad);
             const double ra = range_on(a, n.direction), rb = range_on(b, n.direction);
-            // Folded towards the sensor where b's plane lies behind a's own point (and a's behind
-            // b's): the surface is then the nearer of the two planes; folded away, the farther.
-            const bool towards = range_on(b, a.direction) >= a.range_m;
+            // Folded towards the sensor where b's plane lies behind a's own point and a's behind
+            // b's: the surface is then the nearer of the two planes; folded away (each in front of
+            // the other's point), the farther. One behind and one in front is no fold but a
+            // jump in range: a nearer surface hiding part of a farther one.
+            const double a_to_b = range_on(b, a.direction) - a.range_m, b_to_a = range_on(a, b.direction) - b.range_m;
+            const double jump = std::max(coplanar_m, 0.5 * std::abs(a.range_m - b.range_m));
+            if ((a_to_b > jump && b_to_a < -jump) || (a_to_b < -jump && b_to_a > jump)) return std::nullopt;
+            const bool towards = a_to_b + b_to_a >= 0.0;
             const bool nearer = towards ? ra <= rb : ra >= rb;
             facet = nearer ? &a : &b;
             range = nearer ? ra : rb;

@@ -1643,7 +1643,6 @@ FootprintIntegrator::Patch FootprintIntegrator::curved_patch(const BeamAim& aim,
     chain.clear();
     samples.clear();
     float lo = used.front()->hit->hit->reflectance, hi = lo;
-    double g = 0.0, gr = 0.0, gr2 = 0.0;
     for (const Probe* p : used) {
         const raytrace::Hit& h = *p->hit->hit;
         lo = std::min(lo, h.reflectance);
@@ -1651,9 +1650,6 @@ FootprintIntegrator::Patch FootprintIntegrator::curved_patch(const BeamAim& aim,
         chain.push_back({h.range_m, 0.0, 0.0, 0.0, h.object_id, p->hit->point_world, h.normal_world, 0});
         samples.push_back({p->x_rad, p->y_rad, p->irradiance, h.range_m, beam_from_world * p->direction_world,
                            beam_from_world * h.normal_world.cast<double>(), h.reflectance});
-        g += p->irradiance;
-        gr += p->irradiance * h.range_m;
-        gr2 += p->irradiance * h.range_m * h.range_m;
     }
     if (hi > kMaterialContrast * lo) return Patch::mixed;
     std::sort(chain.begin(), chain.end(), [](const SurfaceEcho& a, const SurfaceEcho& b) { return a.range_m < b.range_m; });
@@ -1667,10 +1663,7 @@ FootprintIntegrator::Patch FootprintIntegrator::curved_patch(const BeamAim& aim,
             if (!footprint_.contains(*excluded, n.x_rad, n.y_rad)) kept.push_back(n);
         nodes = kept;
     }
-    // The probes' points may leave the quadratic by a tenth of their spread in range (as a straight
-    // edge's side its plane), or the receiver's resolution.
-    const double spread = std::sqrt(std::max(0.0, gr2 / g - (gr / g) * (gr / g)));
-    const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes, footprint_.max_offset_rad(), std::max(gap, kPlaneFit * spread));
+    const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes, footprint_.max_offset_rad(), gap);
     if (!patch || patch->range_m > scenario_.sensor.receiver.max_range_m) return Patch::mixed;
     const double range = patch->range_m;
     const double energy = echo_energy_j(weight, 1.0, 1.0, range, 1.0) * (range * range + aperture_radius2_) * patch->seen;

@@ -142,18 +142,23 @@ TEST_CASE("a curved surface grazed: the probes' quadratic and interpolated echo 
     }
 }
 
-TEST_CASE("a curved patch is refused where the samples are not one smooth surface or do not fix a quadratic", "[curved_patch]") {
+TEST_CASE("a curved patch is refused where the samples jump in range or do not cover the footprint", "[curved_patch]") {
     const double impact = 20.0 * std::sqrt(1.0 - 0.25 * 0.25);
     const Sphere sphere{1000.0, 20.0, std::asin(impact / 1000.0)};
     std::vector<SurfaceSample> samples = probes(sphere);
     REQUIRE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
 
-    SECTION("a step of half a metre behind part of the row") {
+    SECTION("half of the middle line 20 m farther (a step whose face the probes do not see)") {
         for (SurfaceSample& s : samples)
-            if (s.y_rad == 0.0 && s.x_rad > 0.0) s.range_m += 0.5;
+            if (s.y_rad == 0.0 && s.x_rad > 0.0) s.range_m += 20.0;
         CHECK_FALSE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
     }
-    SECTION("one row of samples: the curvature across it is free") {
+    SECTION("the upper line on a ridge 300 m behind (a crest hiding what lies between)") {
+        for (SurfaceSample& s : samples)
+            if (s.y_rad > 0.0) s.range_m += 300.0;
+        CHECK_FALSE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));
+    }
+    SECTION("one line of samples: nothing of the footprint above or below it") {
         std::erase_if(samples, [](const SurfaceSample& s) { return s.y_rad != 0.0; });
         REQUIRE(samples.size() >= 6);
         CHECK_FALSE(fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15));

@@ -1,5 +1,5 @@
 #pragma once
-// A footprint on one smooth, curved surface, from the rays already traced inside it
+// A footprint on one surface, curved or folded, from the rays already traced inside it
 // (docs/sensor.md, "Footprint and returns", step 2).
 #include <optional>
 #include <span>
@@ -34,17 +34,17 @@ struct CurvedPatch {
     double seen;
 };
 
-/// The footprint's echo from `samples` of one smooth surface, integrated over `nodes`. Each node
-/// meets the facet (tangent plane) of a sample: along the samples' lines of equal elevation offset,
-/// the nearest's; between two lines, the facet of the line below or above that the surface shows
-/// along the node's direction (where the facets fold towards the sensor the nearer, where away
-/// the farther: the two planes' fold is found exactly, as piecewise-planar terrain has it).
-/// None when the samples do not hold one smooth surface: fewer than six, not fixing a quadratic
-/// of range in the offsets (all on one line or conic), or one of them leaving that quadratic (fitted
-/// by least squares weighted by the irradiance) by more than `range_tolerance_m`; or when a node's
-/// facet is edge-on or behind the sensor. `r_max_rad` scales the offsets (the footprint's
-/// truncation radius).
+/// The footprint's echo from `samples` of one surface, integrated over `nodes`. Each node meets
+/// the facet (tangent plane) of a sample: along the samples' lines of equal elevation offset, the
+/// nearest's; between two lines, the facet of the line below or above that the surface shows along
+/// the node's direction. Where the two facets fold towards the sensor (each one's plane behind the
+/// other's point) that is the nearer, where they fold away the farther: the fold between two
+/// terrain facets is found where it is. None when the samples are fewer than six or on fewer than
+/// three lines, when two facets a node takes from are not a fold but a jump in range (one plane
+/// more than `coplanar_m` behind the other's point, the other in front of it: a nearer surface
+/// hiding part of a farther one), or when a node's facet is edge-on or behind the sensor.
+/// `r_max_rad` scales the offsets (the footprint's truncation radius).
 std::optional<CurvedPatch> fit_curved_patch(std::span<const SurfaceSample> samples, std::span<const PatchNode> nodes,
-                                            double r_max_rad, double range_tolerance_m);
+                                            double r_max_rad, double coplanar_m);
 
 }  // namespace ladarsim::sensor_model
