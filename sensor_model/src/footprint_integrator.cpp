@@ -627,7 +627,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
                 if (n.leaf() && n.kept) sampled += n.weight * target_region.scale;
         }
         const double rest = 1.0 - sampled;
-        if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) == Patch::mixed)) {
+        if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) >= Patch::mixed)) {
             add_seeds();  // (where the target's own sampling did not ask them)
             rest_region.reset(footprint_, footprint_.square(), targets, rest, kComplementSamples);
             Region* const second[] = {&rest_region};
@@ -652,10 +652,16 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         if (near) straight_edge(aim, witnesses, out);
         return;
     }
-    if (patch == Patch::mixed) {
+    // Probes parted between something and nothing, or between two objects, are a straight edge
+    // (a skyline, a wall against the ground) all but always: over the horizon 17 k such footprints
+    // in 60 frames tried one after their first cells and 10 failed; the first cells settled none.
+    // So the edge is tried first, and refinement follows only where it fails.
+    const bool edge_first = patch == Patch::parted && !probes_meet_map(witnesses);
+    if (edge_first && straight_edge(aim, witnesses, out)) return;
+    if (patch == Patch::mixed || patch == Patch::parted) {
         rest_region.reset(footprint_, footprint_.square(), std::nullopt, 1.0, 0);
         Region* const whole[] = {&rest_region};
-        refine(aim, whole, witnesses, media, frame, out, Unsettled::edge_or_map);
+        refine(aim, whole, witnesses, media, frame, out, edge_first ? Unsettled::map : Unsettled::edge_or_map);
     }
 }
 
@@ -1567,7 +1573,8 @@ FootprintIntegrator::Patch FootprintIntegrator::plane_patch(const BeamAim& aim, 
     }
     if (used.empty()) return Patch::mixed;  // nothing to go by
     if (hits == 0) return Patch::empty;
-    if (hits < static_cast<int>(used.size()) || !one_object || normal_sum.norm() < 1e-9 * g_sum) return Patch::mixed;
+    if (hits < static_cast<int>(used.size()) || !one_object) return Patch::parted;
+    if (normal_sum.norm() < 1e-9 * g_sum) return Patch::mixed;
     const Eigen::Vector3d normal = normal_sum.normalized();
     const Eigen::Vector3d centroid = point_sum / g_sum;
     const double reflectance = reflectance_sum / g_sum;

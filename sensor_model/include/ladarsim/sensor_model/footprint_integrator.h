@@ -178,7 +178,9 @@ private:
     /// Traces sub-rays, appending their echoes (media draws from 64 x `first_draw` on).
     void trace(const BeamAim& aim, std::span<const SubRay> sub_rays, bool media, std::uint64_t frame, BeamEchoes& out,
                std::uint32_t first_draw) const;
-    enum class Patch { empty, plane, mixed };
+    /// What the probes make of a footprint: nothing, one plane (or curved surface), something to
+    /// refine, or something parted from nothing or from another object (likely a straight edge).
+    enum class Patch { empty, plane, mixed, parted };
     /// The footprint outside `excluded` (share `weight`) as one plane, from the probes outside it.
     Patch plane_patch(const BeamAim& aim, std::span<const Probe> probes, const std::optional<FootprintRect>& excluded,
                       double weight, BeamEchoes& out) const;
