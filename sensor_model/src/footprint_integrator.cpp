@@ -627,7 +627,8 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
                 if (n.leaf() && n.kept) sampled += n.weight * target_region.scale;
         }
         const double rest = 1.0 - sampled;
-        if (rest > 1e-9 && (media || plane_patch(aim, probes, targets, rest, out) >= Patch::mixed)) {
+        const Patch rest_patch = rest > 1e-9 && !media ? plane_patch(aim, probes, targets, rest, out) : Patch::mixed;
+        if (rest > 1e-9 && (rest_patch == Patch::mixed || rest_patch == Patch::parted)) {
             add_seeds();  // (where the target's own sampling did not ask them)
             rest_region.reset(footprint_, footprint_.square(), targets, rest, kComplementSamples);
             Region* const second[] = {&rest_region};

@@ -185,8 +185,9 @@ private:
     Patch plane_patch(const BeamAim& aim, std::span<const Probe> probes, const std::optional<FootprintRect>& excluded,
                       double weight, BeamEchoes& out) const;
     /// Where the probes' points leave every plane by more than the receiver's resolution (a grazing
-    /// footprint on curved ground): the footprint as one smooth surface (fit_curved_patch), when
-    /// the probes (`used`, all on one object) make one surface; `normal` the probes' mean normal.
+    /// footprint on curved or faceted ground): the footprint as one curved or folded surface on the
+    /// probes' facets (fit_curved_patch), when the probes (`used`, all on one object, not a
+    /// recorded map) make one surface of one material; `normal` the probes' mean normal.
     Patch curved_patch(const BeamAim& aim, std::span<const Probe* const> used, const std::optional<FootprintRect>& excluded,
                        double weight, const Eigen::Vector3d& normal, BeamEchoes& out) const;
     /// The footprint as two surfaces (one may be nothing) parted by one straight edge: the rim of
