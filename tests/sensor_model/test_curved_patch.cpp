@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -18,8 +19,8 @@ namespace {
 constexpr double kDivergence = 0.62e-3;
 constexpr double kWaist = 0.31e-3;
 constexpr double kMaxOffset = 1.5 * kWaist;  // the default truncation
-constexpr double kRowPitch = 0.5 * M_PI / 180.0 / 20.0;            // the paper raster: 20 rows over 0.5 deg
-constexpr double kProbeColumnPitch = 2.0 * 0.5 * M_PI / 180.0 / 150.0;  // every other of 150 columns
+constexpr double kRowPitch = 0.5 * std::numbers::pi / 180.0 / 20.0;  // the paper raster: 20 rows over 0.5 deg
+constexpr double kProbeColumnPitch = 2.0 * 0.5 * std::numbers::pi / 180.0 / 150.0;  // every other of 150 columns
 constexpr double kReflectance = 0.3;
 
 /// A sphere of radius `radius` centred `distance` ahead of the sensor, the beam raised by
@@ -31,18 +32,20 @@ struct Sphere {
         const Eigen::Vector3d d = Eigen::Vector3d(1.0, std::tan(x), std::tan(y)).normalized();
         return {std::cos(elevation) * d.x() - std::sin(elevation) * d.z(), d.y(), std::sin(elevation) * d.x() + std::cos(elevation) * d.z()};
     }
-    /// Range and the sphere's normal along offsets (x, y); none when it misses.
-    std::optional<std::pair<double, Eigen::Vector3d>> meet(double x, double y) const {
+    /// What a ray along offsets (x, y) meets: range, the sphere's normal there (facing the ray, the
+    /// near side's outward normal) and reflectance cos(incidence) / range^2; none when it misses.
+    struct Met {
+        double range;
+        Eigen::Vector3d normal;
+        double seen;
+    };
+    std::optional<Met> meet(double x, double y) const {
         const Eigen::Vector3d d = direction(x, y), c(distance, 0.0, 0.0);
         const double b = d.dot(c), disc = b * b - c.squaredNorm() + radius * radius;
         if (disc < 0.0) return std::nullopt;
         const double t = b - std::sqrt(disc);
-        return std::make_pair(t, Eigen::Vector3d((t * d - c) / radius));
-    }
-    /// Reflectance cos(incidence) / range^2 along offsets (x, y), which must meet the sphere.
-    double seen(double x, double y) const {
-        const auto met = meet(x, y);
-        return kReflectance * std::abs(met->second.dot(direction(x, y))) / (met->first * met->first);
+        const Eigen::Vector3d normal = (t * d - c) / radius;
+        return Met{t, normal, kReflectance * std::abs(normal.dot(d)) / (t * t)};
     }
 };
 
@@ -56,7 +59,7 @@ std::vector<SurfaceSample> probes(const Sphere& s) {
             if (x * x + y * y > kMaxOffset * kMaxOffset) continue;
             const auto met = s.meet(x, y);
             REQUIRE(met);
-            out.push_back({x, y, std::exp(-2.0 * (x * x + y * y) / (kWaist * kWaist)), met->first, s.direction(x, y), -met->second,
+            out.push_back({x, y, std::exp(-2.0 * (x * x + y * y) / (kWaist * kWaist)), met->range, s.direction(x, y), met->normal,
                            kReflectance});
         }
     }
@@ -99,11 +102,10 @@ CurvedPatch brute_force(const Sphere& s) {
                 ++misses;
                 continue;
             }
-            const double seen = s.seen(x, y);
             g_sum += g;
-            e_sum += g * seen;
-            er_sum += g * seen * met->first;
-            er2_sum += g * seen * met->first * met->first;
+            e_sum += g * met->seen;
+            er_sum += g * met->seen * met->range;
+            er2_sum += g * met->seen * met->range * met->range;
         }
     }
     REQUIRE(misses == 0);

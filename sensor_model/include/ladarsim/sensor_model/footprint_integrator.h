@@ -11,8 +11,8 @@
 
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/sensor_model/beam_receiver.h"
-#include "ladarsim/sensor_model/edge_profile.h"
 #include "ladarsim/sensor_model/curved_patch.h"
+#include "ladarsim/sensor_model/edge_profile.h"
 #include "ladarsim/sensor_model/footprint.h"
 #include "ladarsim/sensor_model/scenario.h"
 
