@@ -11,6 +11,7 @@
 
 #include "ladarsim/sensor_model/curved_patch.h"
 #include "ladarsim/sensor_model/footprint.h"
+#include "../support/footprint_grid.h"
 
 using namespace ladarsim::sensor_model;
 
@@ -92,22 +93,18 @@ CurvedPatch brute_force(const Sphere& s) {
     constexpr int kGrid = 801;
     double g_sum = 0.0, e_sum = 0.0, er_sum = 0.0, er2_sum = 0.0;
     int misses = 0;
-    for (int i = 0; i < kGrid; ++i) {
-        for (int j = 0; j < kGrid; ++j) {
-            const double x = kMaxOffset * (2.0 * (i + 0.5) / kGrid - 1.0), y = kMaxOffset * (2.0 * (j + 0.5) / kGrid - 1.0);
-            if (x * x + y * y > kMaxOffset * kMaxOffset) continue;
-            const double g = std::exp(-2.0 * (x * x + y * y) / (kWaist * kWaist));
-            const auto met = s.meet(x, y);
-            if (!met) {
-                ++misses;
-                continue;
-            }
-            g_sum += g;
-            e_sum += g * met->seen;
-            er_sum += g * met->seen * met->range;
-            er2_sum += g * met->seen * met->range * met->range;
+    ladarsim::test::for_each_footprint_cell(kGrid, kMaxOffset, [&](double x, double y) {
+        const double g = std::exp(-2.0 * (x * x + y * y) / (kWaist * kWaist));
+        const auto met = s.meet(x, y);
+        if (!met) {
+            ++misses;
+            return;
         }
-    }
+        g_sum += g;
+        e_sum += g * met->seen;
+        er_sum += g * met->seen * met->range;
+        er2_sum += g * met->seen * met->range * met->range;
+    });
     REQUIRE(misses == 0);
     const double range = er_sum / e_sum;
     return {range, std::sqrt(er2_sum / e_sum - range * range), e_sum / g_sum};

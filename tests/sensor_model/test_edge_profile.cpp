@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ladarsim/sensor_model/edge_profile.h"
+#include "../support/footprint_grid.h"
 
 using namespace ladarsim::sensor_model;
 
@@ -54,14 +55,12 @@ std::vector<std::array<double, 3>> brute_force(const Plane& plane, const ChordSi
     std::vector<std::array<double, 3>> bins;
     double lo = 1e300;
     std::vector<std::pair<double, double>> cells;
-    for (int i = 0; i < kGrid; ++i) {
-        for (int j = 0; j < kGrid; ++j) {
-            const Eigen::Vector2d o(kMaxOffset * (2.0 * (i + 0.5) / kGrid - 1.0), kMaxOffset * (2.0 * (j + 0.5) / kGrid - 1.0));
-            if (o.squaredNorm() > kMaxOffset * kMaxOffset || !on_side(side, o)) continue;
-            cells.emplace_back(plane.at(o), std::exp(-0.5 * o.squaredNorm() / (kSigma * kSigma)));
-            lo = std::min(lo, cells.back().first);
-        }
-    }
+    ladarsim::test::for_each_footprint_cell(kGrid, kMaxOffset, [&](double x, double y) {
+        const Eigen::Vector2d o(x, y);
+        if (!on_side(side, o)) return;
+        cells.emplace_back(plane.at(o), std::exp(-0.5 * o.squaredNorm() / (kSigma * kSigma)));
+        lo = std::min(lo, cells.back().first);
+    });
     double total = 0.0;
     for (const auto& [range, weight] : cells) {
         const auto bin = static_cast<std::size_t>((range - lo) / 0.005);

@@ -18,6 +18,7 @@
 #include "ladarsim/sensor_model/frame_renderer.h"
 #include "ladarsim/sensor_model/physical_constants.h"
 #include "../support/closed_form_scenario.h"
+#include "../support/footprint_grid.h"
 #include "../support/sensors.h"
 #include "../support/scene_builders.h"
 
@@ -276,18 +277,14 @@ std::pair<double, double> continuum_peak(const Sensor& sensor, double az, double
     const Eigen::Matrix3d sensor_from_beam_axes = sensor_from_beam({}, az, el);
     std::vector<std::pair<double, double>> echoes;  // range, photo-electrons before normalising
     double total = 0.0;
-    for (int i = 0; i < kGrid; ++i) {
-        for (int j = 0; j < kGrid; ++j) {
-            const double x = r_max * (2.0 * (i + 0.5) / kGrid - 1.0), y = r_max * (2.0 * (j + 0.5) / kGrid - 1.0);
-            if (x * x + y * y > r_max * r_max) continue;
-            const double g = std::exp(-2.0 * (x * x + y * y) / (w * w));
-            total += g;
-            const Eigen::Vector3d d = sensor_from_beam_axes * Eigen::Vector3d(1.0, std::tan(x), std::tan(y)).normalized();
-            if (d.z() <= 0.0) continue;  // below the edge
-            const double range = normal.dot(point) / normal.dot(d);
-            echoes.emplace_back(range, g * extended_target_photoelectrons(sensor, reflectance, std::abs(normal.dot(d)), range));
-        }
-    }
+    ladarsim::test::for_each_footprint_cell(kGrid, r_max, [&](double x, double y) {
+        const double g = std::exp(-2.0 * (x * x + y * y) / (w * w));
+        total += g;
+        const Eigen::Vector3d d = sensor_from_beam_axes * Eigen::Vector3d(1.0, std::tan(x), std::tan(y)).normalized();
+        if (d.z() <= 0.0) return;  // below the edge
+        const double range = normal.dot(point) / normal.dot(d);
+        echoes.emplace_back(range, g * extended_target_photoelectrons(sensor, reflectance, std::abs(normal.dot(d)), range));
+    });
     if (echoes.empty()) return {0.0, 0.0};
     double lo = 1e300, hi = -1e300;
     for (const auto& [range, e] : echoes) {
