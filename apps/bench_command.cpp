@@ -8,7 +8,7 @@
 
 #include "command.h"
 #include "ladarsim/bench/benchmarks.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 
 namespace ladarsim::apps {
 namespace {

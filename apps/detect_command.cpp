@@ -14,7 +14,7 @@
 #include "ladarsim/detect/clustering.h"
 #include "option_checks.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 
 namespace ladarsim::apps {
 namespace {

@@ -10,7 +10,7 @@
 #include "command.h"
 #include "plot_script.h"
 #include "ladarsim/detect/sequence.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 
 namespace ladarsim::apps {
 namespace {

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/sensor_model/render_dataset.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
 
 namespace ladarsim::apps {
 

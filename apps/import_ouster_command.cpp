@@ -7,8 +7,8 @@
 #include "import_summary.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/ouster_pcap.h"
-#include "ladarsim/sensor_model/ouster_sensor.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/ouster_sensor.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::apps {
 namespace {

@@ -6,7 +6,7 @@
 #include "import_summary.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/velodyne_pcap.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::apps {
 namespace {

@@ -2,7 +2,7 @@
 // A render's processes when mpirun launched it: the MPI ranks as a FrameTeam.
 #include <memory>
 
-#include "ladarsim/sensor_model/render_dataset.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
 
 namespace ladarsim::apps {
 

@@ -18,8 +18,8 @@
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame.h"
 #include "stop_signal.h"
-#include "ladarsim/sensor_model/render_dataset.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 
 namespace ladarsim::apps {
 namespace {

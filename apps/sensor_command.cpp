@@ -6,10 +6,10 @@
 #include <string>
 
 #include "command.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/ouster_pcap.h"
-#include "ladarsim/sensor_model/ouster_sensor.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/ouster_sensor.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::apps {
 namespace {

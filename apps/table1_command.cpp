@@ -13,9 +13,9 @@
 #include "plot_script.h"
 #include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/dataset/atomic_file.h"
-#include "ladarsim/dataset/json_file.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/core/atomic_file.h"
+#include "ladarsim/core/json_file.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::apps {
 namespace {

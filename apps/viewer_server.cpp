@@ -15,7 +15,7 @@
 
 #include "ladarsim/dataset/exr_file.h"
 #include "ladarsim/dataset/frame_io.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::apps {
 

@@ -13,8 +13,9 @@
 
 #include "ladarsim/raytrace/traced_scene.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/footprint.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/footprint/footprint.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
+#include "ladarsim/core/units.h"
 
 using namespace ladarsim;
 using Clock = std::chrono::steady_clock;
@@ -42,7 +43,7 @@ scene::Scene benchmark_scene() {
 std::vector<raytrace::Ray> frame_rays(double elevation_deg) {
     const sensor_model::Sensor sensor = sensor_model::sensor_preset("paper_ladar");
     const sensor_model::ScanPattern& raster = *sensor.scan;
-    const sensor_model::Footprint footprint(sensor.transmitter.divergence_mrad * 1e-3, 16, 1.5);
+    const sensor_model::Footprint footprint(sensor.transmitter.divergence_mrad * kMrad, 16, 1.5);
     std::vector<sensor_model::SubRay> sub(16);
     footprint.fixed(sub);
     std::vector<raytrace::Ray> rays;

@@ -1,6 +1,6 @@
 // Any bytes, as a .glb and as a .gltf: load_gltf may refuse them (InputError), never crash.
 #include "input_file.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/gltf_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

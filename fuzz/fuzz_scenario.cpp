@@ -1,7 +1,7 @@
 // Any bytes as a scenario file: load_scenario may refuse them (InputError), never crash.
 #include "input_file.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     try {

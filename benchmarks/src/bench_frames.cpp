@@ -6,7 +6,7 @@
 #include <ctime>
 #include <unistd.h>
 
-#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
 
 namespace ladarsim::bench {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ladarsim/dataset/frame.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 
 namespace ladarsim::bench {
 

@@ -10,7 +10,7 @@
 #include "peer.h"
 #include "scaling.h"
 #include "ladarsim/raytrace/traced_scene.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
 
 namespace ladarsim::bench {
 

@@ -9,10 +9,11 @@
 
 #include "bench_frames.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/beam_receiver.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/physical_constants.h"
-#include "ladarsim/sensor_model/range_equation.h"
+#include "ladarsim/sensor_model/signal/beam_receiver.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
+#include "ladarsim/sensor_model/sensor/physical_constants.h"
+#include "ladarsim/sensor_model/signal/range_equation.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::bench {
 
@@ -22,7 +23,6 @@ using nlohmann::json;
 using sensor_model::Scenario;
 
 constexpr int kReferenceSamples = 4096;
-constexpr double kDeg = std::numbers::pi / 180.0;
 /// Every object's returns count (no one object in focus).
 constexpr std::uint32_t kAllObjects = 0xFFFFFFFEu;
 
@@ -250,7 +250,7 @@ HardCase drone_at_footprint_edge(const Scenario& base) {
             c.scenario.scene.objects.push_back(o);
         }
     }
-    const double r_max = c.scenario.render.footprint_truncation * 0.5 * c.scenario.sensor.transmitter.divergence_mrad * 1e-3;
+    const double r_max = c.scenario.render.footprint_truncation * 0.5 * c.scenario.sensor.transmitter.divergence_mrad * kMrad;
     c.judged = [r_max, boresight](const Return& r) {
         const Eigen::Vector3d axis(std::cos(r.beam_el_rad) * std::cos(r.beam_az_rad), std::cos(r.beam_el_rad) * std::sin(r.beam_az_rad),
                                    std::sin(r.beam_el_rad));

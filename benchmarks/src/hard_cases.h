@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/bench/benchmarks.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 
 namespace ladarsim::bench {
 

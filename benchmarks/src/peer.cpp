@@ -6,6 +6,7 @@
 
 #include "bench_frames.h"
 #include "ladarsim/scene/procedural_models.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::bench {
 
@@ -24,7 +25,6 @@ scene::SceneObject fixed_object(std::uint32_t id, scene::ObjectClass c, scene::M
 }  // namespace
 
 nlohmann::json peer_scene(const sensor_model::Scenario& base, const BenchOptions& options) {
-    constexpr double kDeg = std::numbers::pi / 180.0;
     // The sensor 2 m up; a 1 m sphere (reflectance 0.5) resting on a flat 1 km ground plane
     // (0.3) 200 m ahead. The 0.5 deg field spans 1.75 m there: half of it on the sphere, the rest
     // on the plane behind it at grazing incidence, out to the sky.

@@ -6,7 +6,8 @@
 
 #include "bench_frames.h"
 #include "ladarsim/raytrace/traced_scene.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::bench {
 
@@ -19,7 +20,6 @@ using nlohmann::json;
 std::vector<raytrace::Ray> fan(std::size_t count) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-0.5, 0.5);
-    constexpr double kDeg = std::numbers::pi / 180.0;
     std::vector<raytrace::Ray> rays(count);
     for (raytrace::Ray& r : rays) {
         const double az = 0.5 * kDeg * u(rng), el = -1.0 * kDeg + 0.5 * kDeg * u(rng);

@@ -6,7 +6,7 @@
 #include <regex>
 
 #include "ladarsim/dataset/frame_io.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim {
 
@@ -144,8 +144,6 @@ std::string kept_files_note(const std::vector<std::string>& kept, const std::fil
     return "kept your files in " + out.string() + " (not written by ladarsim): " + joined(kept);
 }
 
-nlohmann::json software_json() { return {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}; }
-
 std::vector<std::string> write_recorded_dataset(const std::vector<Frame>& frames, const nlohmann::json& sensor,
                                                 const std::filesystem::path& out_dir, const std::filesystem::path& source) {
     const std::filesystem::path out = checked_dataset_dir(out_dir);
@@ -158,10 +156,7 @@ std::vector<std::string> write_recorded_dataset(const std::vector<Frame>& frames
         log.push_back({{"index", f.index}, {"start_time_s", f.start_time_s}, {"end_time_s", f.end_time_s},
                        {"returns", f.returns.size()}});
     }
-    write_json(staging / "manifest.json", {{"software", software_json()},
-                                           {"recorded_from", std::filesystem::absolute(source).string()},
-                                           {"sensor", sensor},
-                                           {"frames", log}});
+    write_manifest(staging / "manifest.json", {sensor, log, {{"recorded_from", std::filesystem::absolute(source).string()}}});
     return swap_in_dataset(staging, out);
 }
 

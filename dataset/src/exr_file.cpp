@@ -14,8 +14,8 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 
-#include "ladarsim/dataset/atomic_file.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/atomic_file.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim {
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <system_error>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/pcd_file.h"
 
 namespace ladarsim {

@@ -4,8 +4,8 @@
 #include <limits>
 #include <string>
 
-#include "ladarsim/dataset/json_fields.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_fields.h"
+#include "ladarsim/core/json_file.h"
 
 namespace ladarsim {
 

@@ -7,12 +7,12 @@
 #include <map>
 #include <regex>
 
-#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/core/atomic_file.h"
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/ground_truth_file.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/manifest.h"
 
 namespace ladarsim {

@@ -7,9 +7,9 @@
 #include <limits>
 #include <string>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_fields.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_fields.h"
+#include "ladarsim/core/json_file.h"
 
 namespace ladarsim {
 
@@ -71,6 +71,16 @@ Manifest read_manifest(const std::filesystem::path& file) {
         m.pointing.push_back(read_pointing(frames[i], file.string(), "frames[" + std::to_string(i) + "]"));
     }
     return m;
+}
+
+nlohmann::json software_json() { return {{"name", "ladarsim"}, {"version", LADARSIM_VERSION}}; }
+
+void write_manifest(const std::filesystem::path& file, const ManifestRecord& record) {
+    nlohmann::json manifest = record.origin;
+    manifest["software"] = software_json();
+    manifest["sensor"] = record.sensor;
+    manifest["frames"] = record.frames;
+    write_json(file, manifest);
 }
 
 }  // namespace ladarsim

@@ -9,15 +9,15 @@
 #include <string_view>
 #include <tuple>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_fields.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_fields.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/pcap_udp.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim {
 namespace {
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 /// `count` numbers in [lo, hi], as every per-channel table and matrix of the metadata is.
 std::vector<double> numbers(JsonFields& fields, const std::string& key, std::size_t count, double lo, double hi) {
@@ -89,8 +89,8 @@ public:
         : columns_(c.columns_per_frame), origin_offset_m_(c.lidar_origin_to_beam_origin_mm * 1e-3),
           rotation_(c.lidar_to_sensor.topLeftCorner<3, 3>()) {
         // Ouster's azimuths turn clockwise; angles about +z turn counter-clockwise.
-        for (double a : c.beam_azimuth_deg) azimuth_rad_.push_back(-a * kRadPerDeg);
-        for (double a : c.beam_altitude_deg) altitude_rad_.push_back(a * kRadPerDeg);
+        for (double a : c.beam_azimuth_deg) azimuth_rad_.push_back(-a * kDeg);
+        for (double a : c.beam_altitude_deg) altitude_rad_.push_back(a * kDeg);
     }
 
     /// The return of channel `row` in column `column` (measurement_id) at range `range_m`.

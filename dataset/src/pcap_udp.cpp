@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
-#include "ladarsim/dataset/atomic_file.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/atomic_file.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/lzf.h"
 
 namespace ladarsim {

@@ -6,7 +6,7 @@
 #include <span>
 #include <tuple>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/pcap_udp.h"
 
 namespace ladarsim {

@@ -6,6 +6,7 @@
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/clustering.h"
 #include "ladarsim/detect/tracking_metrics.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::detect {
 
@@ -54,7 +55,7 @@ std::vector<TrackedObject> MultiTargetTracker::process(double time_s, const Poin
     const double radius = config_.method == Method::rbnn
                               ? config_.rbnn_radius_m
                               : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, range, config_.bias_m);
-    const double spread_rad = config_.footprint_divergences * sensor_.divergence_mrad * 1e-3;
+    const double spread_rad = config_.footprint_divergences * sensor_.divergence_mrad * kMrad;
     const std::vector<Cluster> candidates =
         plausible_targets(rbnn(remove_outliers(foreground, radius, config_.min_neighbours), radius), config_.max_object_diagonal_m,
                           spread_rad, static_cast<std::size_t>(config_.min_neighbours) + 1);

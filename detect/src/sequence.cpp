@@ -9,8 +9,8 @@
 
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/frame_pcd.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_fields.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_fields.h"
 #include "ladarsim/dataset/manifest.h"
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/clustering.h"

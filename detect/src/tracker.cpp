@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "ladarsim/detect/box_metrics.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::detect {
 
@@ -141,7 +142,7 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
                      : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, cal_range, config_.bias_m);
 
     const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
-    const double divergence_rad = sensor_.divergence_mrad * 1e-3;
+    const double divergence_rad = sensor_.divergence_mrad * kMrad;
     std::vector<Cluster> candidates =
         plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, config_.footprint_divergences * divergence_rad,
                           static_cast<std::size_t>(config_.min_neighbours) + 1);

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <numbers>
 
-#include "ladarsim/sensor_model/counter_random.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/signal/counter_random.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::experiments {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 }
 
 AnalyticPointCount paper_point_count(double range_m, double fov_deg, double target_m, int beams_az, int beams_el,
@@ -20,7 +20,7 @@ AnalyticPointCount paper_point_count(double range_m, double fov_deg, double targ
     p.fov_m = 2.0 * std::tan(0.5 * fov_deg * kDeg) * range_m;
     p.lines_az = static_cast<int>(std::ceil(target_m / (p.fov_m / beams_az)));
     p.lines_el = static_cast<int>(std::ceil(target_m / (p.fov_m / beams_el)));
-    const double divergence_deg = divergence_mrad * 1e-3 / kDeg;
+    const double divergence_deg = divergence_mrad * kMrad / kDeg;
     auto intersection_m = [&](int beams) {
         return (divergence_deg * beams - fov_deg) / (beams - 1) * kDeg * range_m;
     };

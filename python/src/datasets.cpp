@@ -16,7 +16,7 @@
 #include "frames.h"
 #include "json_objects.h"
 #include "ladarsim/dataset/frame_io.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::python {
 

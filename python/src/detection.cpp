@@ -11,8 +11,8 @@
 #include "bindings.h"
 #include "datasets.h"
 #include "json_objects.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/detect/sequence.h"
 
 namespace ladarsim::python {

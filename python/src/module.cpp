@@ -4,7 +4,7 @@
 
 #include "bindings.h"
 #include "ladarsim/dataset/dataset_directory.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::python {
 

@@ -15,10 +15,10 @@
 #include "bindings.h"
 #include "frames.h"
 #include "json_objects.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/render_dataset.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 
 namespace ladarsim::python {
 

@@ -7,14 +7,14 @@
 
 #include "bindings.h"
 #include "json_objects.h"
-#include "ladarsim/dataset/json_file.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/core/json_file.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::python {
 
 void bind_sensors(py::module_& m) {
     using sensor_model::Sensor;
-    constexpr double kMrad = 1e3;
     py::class_<Sensor>(m, "Sensor", R"(A sensor as its parts (docs/sensor.md): scan pattern, transmitter, optics,
 receiver, gimbal. `document` is the sensor document with its derived quantities, as a dataset's
 manifest records it under "sensor".)")
@@ -42,8 +42,8 @@ manifest records it under "sensor".)")
         .def_property_readonly("rows", [](const Sensor& s) { return s.scan->rows(); }, "Beams in elevation.")
         .def_property_readonly("field_az_deg", [](const Sensor& s) { return s.scan->field_az_deg(); })
         .def_property_readonly("field_el_deg", [](const Sensor& s) { return s.scan->field_el_deg(); })
-        .def_property_readonly("pitch_az_mrad", [](const Sensor& s) { return s.scan->pitch_az_rad() * kMrad; })
-        .def_property_readonly("pitch_el_mrad", [](const Sensor& s) { return s.scan->pitch_el_rad() * kMrad; })
+        .def_property_readonly("pitch_az_mrad", [](const Sensor& s) { return s.scan->pitch_az_rad() / kMrad; })
+        .def_property_readonly("pitch_el_mrad", [](const Sensor& s) { return s.scan->pitch_el_rad() / kMrad; })
         .def_property_readonly("frame_rate_hz", [](const Sensor& s) { return s.scan->frame_rate_hz(); })
         .def_property_readonly("beams_per_second", &Sensor::beams_per_second)
         .def_property_readonly("pulses_per_beam", &Sensor::pulses_per_beam)

@@ -19,7 +19,7 @@
 #include <pcl/point_types.h>
 #include <spdlog/spdlog.h>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/pcd_file.h"
 #include "ladarsim/scene/las_file.h"
 

@@ -10,7 +10,7 @@
 #include <spdlog/spdlog.h>
 #include <tiny_gltf.h>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::scene {
 namespace {

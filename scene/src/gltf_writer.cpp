@@ -6,7 +6,7 @@
 
 #include <tiny_gltf.h>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::scene {
 namespace {

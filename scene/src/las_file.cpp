@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::scene {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <system_error>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/gltf_writer.h"
 
 namespace ladarsim::scene {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/background_map.h"
 #include "ladarsim/scene/gltf_loader.h"
 

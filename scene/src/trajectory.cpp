@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include "ladarsim/core/units.h"
 
 namespace ladarsim::scene {
 
@@ -83,11 +84,10 @@ struct Evaluate {
 }  // namespace
 
 Eigen::Quaterniond orientation_from_ypr_deg(double yaw_deg, double pitch_deg, double roll_deg) {
-    constexpr double kRad = std::numbers::pi / 180.0;
     // A positive rotation about +y tips +x down, so nose-up pitch is a negative angle about +y.
-    return Eigen::Quaterniond(Eigen::AngleAxisd(yaw_deg * kRad, Eigen::Vector3d::UnitZ()) *
-                              Eigen::AngleAxisd(-pitch_deg * kRad, Eigen::Vector3d::UnitY()) *
-                              Eigen::AngleAxisd(roll_deg * kRad, Eigen::Vector3d::UnitX()));
+    return Eigen::Quaterniond(Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitZ()) *
+                              Eigen::AngleAxisd(-pitch_deg * kDeg, Eigen::Vector3d::UnitY()) *
+                              Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitX()));
 }
 
 Eigen::Isometry3d Pose::world_from_object() const {

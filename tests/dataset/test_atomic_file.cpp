@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "ladarsim/dataset/atomic_file.h"
+#include "ladarsim/core/atomic_file.h"
 #include "../support/scratch_dir.h"
 
 using ladarsim::AtomicFile;

@@ -7,8 +7,8 @@
 
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame_pcd.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/manifest.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"

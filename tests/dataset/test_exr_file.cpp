@@ -18,7 +18,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 
 #include "ladarsim/dataset/exr_file.h"
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"
 

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/dataset/ground_truth_file.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"
 

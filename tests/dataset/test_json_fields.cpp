@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_fields.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_fields.h"
 #include "../support/input_error_of.h"
 
 using ladarsim::InputError;

@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/kitti_export.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"

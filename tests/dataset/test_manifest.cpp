@@ -3,8 +3,8 @@
 // mistyped fields.
 #include <catch2/catch.hpp>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/manifest.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"

@@ -13,8 +13,8 @@
 #include <optional>
 #include <set>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/ouster_pcap.h"
 #include "../support/pcap_writer.h"
 #include "../support/ouster_captures.h"

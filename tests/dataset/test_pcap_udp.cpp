@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/pcap_udp.h"
 #include "../support/pcap_writer.h"
 #include "../support/scratch_dir.h"

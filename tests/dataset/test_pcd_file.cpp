@@ -16,7 +16,7 @@
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/pcd_file.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/velodyne_pcap.h"
 #include "../support/scratch_dir.h"
 

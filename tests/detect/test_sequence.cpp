@@ -6,8 +6,8 @@
 #include <fstream>
 
 #include "ladarsim/dataset/frame_pcd.h"
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/detect/sequence.h"
 #include "../support/input_error_of.h"
 #include "../support/scratch_dir.h"

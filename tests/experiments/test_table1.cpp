@@ -6,7 +6,7 @@
 
 #include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/trajectory.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
 #include "../support/sensors.h"
 #include "../support/scene_builders.h"
 

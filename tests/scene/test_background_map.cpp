@@ -17,7 +17,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/background_map.h"
 
 using namespace ladarsim::scene;

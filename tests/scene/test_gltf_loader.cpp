@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/gltf_loader.h"
 #include "../support/scratch_dir.h"
 

@@ -8,7 +8,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/background_map.h"
 #include "ladarsim/scene/las_file.h"
 #include "../support/scratch_dir.h"

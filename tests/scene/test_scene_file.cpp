@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_fields.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/core/json_fields.h"
 #include "ladarsim/scene/scene_file.h"
 
 using namespace ladarsim::scene;

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "ladarsim/sensor_model/apd_receiver.h"
-#include "ladarsim/sensor_model/sensor.h"
-#include "ladarsim/sensor_model/waveform.h"
+#include "ladarsim/sensor_model/signal/apd_receiver.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
+#include "ladarsim/sensor_model/signal/waveform.h"
 
 using namespace ladarsim::sensor_model;
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "ladarsim/sensor_model/atmosphere.h"
+#include "ladarsim/sensor_model/signal/atmosphere.h"
 
 using ladarsim::sensor_model::kim_extinction_per_m;
 

@@ -6,9 +6,9 @@
 
 #include <Eigen/LU>
 
-#include "ladarsim/sensor_model/beam_geometry.h"
-#include "ladarsim/sensor_model/gimbal.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/beam_geometry.h"
+#include "ladarsim/sensor_model/sensor/gimbal.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 using namespace ladarsim::sensor_model;
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "ladarsim/sensor_model/beam_receiver.h"
-#include "ladarsim/sensor_model/physical_constants.h"
+#include "ladarsim/sensor_model/signal/beam_receiver.h"
+#include "ladarsim/sensor_model/sensor/physical_constants.h"
 #include "../support/atmospheres.h"
 
 using namespace ladarsim;

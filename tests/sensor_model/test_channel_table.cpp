@@ -3,12 +3,12 @@
 
 #include <cmath>
 
-#include "ladarsim/sensor_model/channel_table.h"
+#include "ladarsim/sensor_model/sensor/channel_table.h"
+#include "ladarsim/core/units.h"
 
 using namespace ladarsim::sensor_model;
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
 
 ChannelTable three_channels() {
     ChannelTable::Parameters p;

@@ -9,8 +9,8 @@
 
 #include <Eigen/QR>
 
-#include "ladarsim/sensor_model/curved_patch.h"
-#include "ladarsim/sensor_model/footprint.h"
+#include "ladarsim/sensor_model/footprint/curved_patch_fit.h"
+#include "ladarsim/sensor_model/footprint/footprint.h"
 #include "../support/footprint_grid.h"
 
 using namespace ladarsim::sensor_model;
@@ -89,7 +89,7 @@ double plane_misfit(const std::vector<SurfaceSample>& samples) {
 }
 
 /// The echo integrated on an 801 x 801 grid of the truncated footprint.
-CurvedPatch brute_force(const Sphere& s) {
+CurvedPatchFit brute_force(const Sphere& s) {
     constexpr int kGrid = 801;
     double g_sum = 0.0, e_sum = 0.0, er_sum = 0.0, er2_sum = 0.0;
     int misses = 0;
@@ -129,8 +129,8 @@ TEST_CASE("a curved surface grazed: the probes' quadratic and interpolated echo 
         const Sphere sphere{c.distance, c.radius, std::asin(impact / c.distance)};
         const std::vector<SurfaceSample> samples = probes(sphere);
         REQUIRE(plane_misfit(samples) > 0.15);  // a plane patch would refuse it
-        const CurvedPatch exact = brute_force(sphere);
-        const std::optional<CurvedPatch> patch = fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15);
+        const CurvedPatchFit exact = brute_force(sphere);
+        const std::optional<CurvedPatchFit> patch = fit_curved_patch(samples, nodes(sphere), kMaxOffset, 0.15);
         REQUIRE(patch);
         INFO("cos(incidence) " << cos_incidence << ": range " << patch->range_m << " against " << exact.range_m << ", spread "
                                << patch->spread_m << " against " << exact.spread_m << ", echo " << patch->seen << " against "

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "ladarsim/sensor_model/edge_profile.h"
+#include "ladarsim/sensor_model/footprint/edge_profile.h"
 #include "../support/footprint_grid.h"
 
 using namespace ladarsim::sensor_model;

@@ -5,8 +5,8 @@
 #include <numeric>
 #include <vector>
 
-#include "ladarsim/sensor_model/counter_random.h"
-#include "ladarsim/sensor_model/footprint.h"
+#include "ladarsim/sensor_model/signal/counter_random.h"
+#include "ladarsim/sensor_model/footprint/footprint.h"
 
 using namespace ladarsim::sensor_model;
 

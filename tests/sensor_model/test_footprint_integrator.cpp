@@ -13,10 +13,10 @@
 #include <vector>
 #include <algorithm>
 
-#include "ladarsim/sensor_model/apd_receiver.h"
-#include "ladarsim/sensor_model/beam_geometry.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/physical_constants.h"
+#include "ladarsim/sensor_model/signal/apd_receiver.h"
+#include "ladarsim/sensor_model/sensor/beam_geometry.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/sensor_model/sensor/physical_constants.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/footprint_grid.h"
 #include "../support/sensors.h"

@@ -9,8 +9,8 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
-#include "ladarsim/sensor_model/beam_geometry.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/sensor/beam_geometry.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 

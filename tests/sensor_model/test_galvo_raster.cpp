@@ -4,14 +4,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "ladarsim/sensor_model/galvo_raster.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
 #include "../support/sensors.h"
+#include "ladarsim/core/units.h"
 
 using namespace ladarsim::sensor_model;
 using ladarsim::test::paper_raster;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// The i-th beam the galvo fires in a frame (lines in order).
 RasterBeam fired(const GalvoRaster& r, int i) { return r.beam(i / r.columns(), i % r.columns()); }

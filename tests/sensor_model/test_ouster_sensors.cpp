@@ -6,10 +6,10 @@
 #include <set>
 #include <string>
 
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/ouster_pcap.h"
-#include "ladarsim/sensor_model/ouster_sensor.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/ouster_sensor.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 #include "../support/ouster_captures.h"
 #include "../support/rerender_recorded.h"
 #include "../support/scratch_dir.h"

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/range_equation.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/sensor_model/signal/range_equation.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/sensors.h"
 #include "../support/scene_builders.h"

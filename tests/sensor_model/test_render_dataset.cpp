@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "ladarsim/dataset/manifest.h"
-#include "ladarsim/sensor_model/render_dataset.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
 #include "ladarsim/dataset/frame_pcd.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"

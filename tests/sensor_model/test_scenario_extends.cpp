@@ -5,10 +5,10 @@
 
 #include <fstream>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/gltf_writer.h"
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;

@@ -6,8 +6,8 @@
 #include <set>
 
 #include "ladarsim/dataset/frame_pcd.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/render_dataset.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;

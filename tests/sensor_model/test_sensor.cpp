@@ -5,10 +5,10 @@
 #include <fstream>
 #include <numbers>
 
-#include "ladarsim/dataset/input_error.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/scenario.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/core/input_error.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
+#include "ladarsim/sensor_model/render/scenario.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 #include "../support/scratch_dir.h"
 
 using namespace ladarsim;

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "ladarsim/sensor_model/sensor.h"
-#include "ladarsim/sensor_model/spinning_head.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
+#include "ladarsim/sensor_model/sensor/spinning_head.h"
 
 using namespace ladarsim::sensor_model;
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/sub_ray_lattice.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/sensor_model/footprint/sub_ray_lattice.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 

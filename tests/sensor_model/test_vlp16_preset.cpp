@@ -7,8 +7,8 @@
 #include <map>
 
 #include "ladarsim/dataset/velodyne_pcap.h"
-#include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 #include "../support/rerender_recorded.h"
 #include "../support/scratch_dir.h"
 

@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "ladarsim/scene/procedural_models.h"
-#include "ladarsim/sensor_model/frame_renderer.h"
-#include "ladarsim/sensor_model/volume_echoes.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
+#include "ladarsim/sensor_model/signal/volume_echoes.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/atmospheres.h"
 #include "../support/scene_builders.h"

@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
-#include "ladarsim/sensor_model/beam_receiver.h"
-#include "ladarsim/sensor_model/physical_constants.h"
-#include "ladarsim/sensor_model/waveform.h"
+#include "ladarsim/sensor_model/signal/beam_receiver.h"
+#include "ladarsim/sensor_model/sensor/physical_constants.h"
+#include "ladarsim/sensor_model/signal/waveform.h"
 #include "../support/atmospheres.h"
 
 using namespace ladarsim::sensor_model;

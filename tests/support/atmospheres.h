@@ -1,7 +1,7 @@
 #pragma once
 #include <limits>
 
-#include "ladarsim/sensor_model/atmosphere.h"
+#include "ladarsim/sensor_model/signal/atmosphere.h"
 
 namespace ladarsim::test {
 

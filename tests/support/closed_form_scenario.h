@@ -2,7 +2,7 @@
 // A scenario for checks against closed forms, and the closed form most of them use.
 #include <cmath>
 
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 #include "atmospheres.h"
 #include "sensors.h"
 

@@ -2,7 +2,7 @@
 // The InputError a reader throws, for a test to check the file, field and problem it names.
 #include <stdexcept>
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::test {
 

@@ -12,9 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ladarsim/sensor_model/frame_renderer.h"
+#include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "ladarsim/dataset/frame_pcd.h"
-#include "ladarsim/sensor_model/scenario.h"
+#include "ladarsim/sensor_model/render/scenario.h"
 #include "scratch_dir.h"
 
 namespace ladarsim::test {

@@ -2,9 +2,9 @@
 // The bundled sensors as tests use them, and the one change tests make to them: another raster.
 #include <memory>
 
-#include "ladarsim/sensor_model/galvo_raster.h"
-#include "ladarsim/sensor_model/scenario.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/galvo_raster.h"
+#include "ladarsim/sensor_model/render/scenario.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::test {
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/dataset/frame.h"
+#include "ladarsim/dataset/manifest.h"
 
 namespace ladarsim {
 
@@ -66,9 +67,6 @@ std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, c
 
 /// "; kept your files in DIR: a, b/" for a summary line, or "" when `kept` is empty.
 std::string kept_files_note(const std::vector<std::string>& kept, const std::filesystem::path& out);
-
-/// The "software" record of a manifest: this program's name and version.
-nlohmann::json software_json();
 
 /// Writes recorded frames (e.g. decoded Velodyne packets) as a dataset detect/ reads:
 /// frames/NNNNNN.pcd and a manifest.json naming the source and holding `sensor` (the recording

@@ -10,7 +10,7 @@
 #include "ladarsim/dataset/exr_file.h"
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/ground_truth_file.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 
 namespace ladarsim {
 

@@ -1,13 +1,19 @@
 #pragma once
-// What a dataset's manifest.json tells its readers (detection, the viewer) about how its frames
-// were taken: the sensor's geometry and, per frame, where the gimbal pointed.
-//   {"sensor": {..., "derived": {"beams_az", "beams_el", "field_az_deg", "field_el_deg",
-//                                "divergence_mrad", ...}},
-//    "frames": [{"index", ..., "gimbal_az_rad", "gimbal_el_rad"}, ...], ...}
+// A dataset's manifest.json, written for every dataset by write_manifest, rendered or recorded:
+//   software  {"name", "version"} of the program that wrote it
+//   sensor    the sensor's parameters, with "derived": {"beams_az", "beams_el", "field_az_deg",
+//             "field_el_deg", "divergence_mrad", ...}, which readers (detection, the viewer) size
+//             their work by
+//   frames    one record per frame: "index", "start_time_s", "end_time_s", "returns"; a render's
+//             also the gimbal's pointing ("gimbal_az_rad", "gimbal_el_rad") and its timing
+// and what made it: a render's "scenario_file", "scenario", "mount", "render", "threads",
+// "processes" and "totals"; a recording's "recorded_from".
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace ladarsim {
 
@@ -40,5 +46,18 @@ struct Manifest {
 /// Throws InputError naming the file and the field for a missing file, a manifest without
 /// `sensor.derived` (the field named in both cases), or a missing or mistyped value.
 Manifest read_manifest(const std::filesystem::path& file);
+
+/// The "software" record of a manifest: this program's name and version.
+nlohmann::json software_json();
+
+/// What a manifest holds besides its software record (see the top of this file).
+struct ManifestRecord {
+    nlohmann::json sensor;
+    nlohmann::json frames = nlohmann::json::array();
+    nlohmann::json origin = nlohmann::json::object();  ///< what made the dataset: its keys, as above
+};
+
+/// Writes `file` (atomically) with the software record and `record`'s keys.
+void write_manifest(const std::filesystem::path& file, const ManifestRecord& record);
 
 }  // namespace ladarsim

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/scene/mesh.h"
-#include "ladarsim/sensor_model/sensor.h"
+#include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::experiments {
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <filesystem>
 
-#include "ladarsim/dataset/json_fields.h"
+#include "ladarsim/core/json_fields.h"
 #include "ladarsim/scene/scene.h"
 
 namespace ladarsim::scene {

@@ -1,0 +1,33 @@
+#pragma once
+// A footprint over a recorded map, by brute force: its discs overlap and tilt at random, so cells
+// never agree and refinement would pay its bookkeeping for every sub-ray up to its budget
+// (docs/sensor.md, "Footprint and returns").
+#include <span>
+
+#include "footprint_context.h"
+#include "ladarsim/sensor_model/footprint/footprint_strategy.h"
+#include "ladarsim/sensor_model/footprint/sub_ray_lattice.h"
+#include "stratified_sub_rays.h"
+
+namespace ladarsim::sensor_model {
+
+class RecordedMapSampling final : public FootprintStrategy {
+public:
+    /// Its own stratified sub-rays at the outline budget (context.outline_samples).
+    explicit RecordedMapSampling(const FootprintContext& context);
+
+    /// Where footprints overlap, the lattice's shared sub-rays (without media) instead of its own
+    /// (null: its own). Set before rendering.
+    void share_sub_rays(const SubRayLattice* lattice) { lattice_ = lattice; }
+    /// Whether the witnesses inside the footprint met the recorded map.
+    bool met_by(std::span<const Probe* const> witnesses) const;
+
+    Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
+
+private:
+    const FootprintContext& context_;
+    StratifiedSubRays own_;
+    const SubRayLattice* lattice_ = nullptr;
+};
+
+}  // namespace ladarsim::sensor_model
