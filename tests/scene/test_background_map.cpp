@@ -188,7 +188,7 @@ TEST_CASE("background_map: a scanner position leaves true surface normals alone,
     for (const auto& n : map.normals) CHECK((n - expected).norm() < 1e-4f);
 }
 
-TEST_CASE("background_map: points on a line have no plane; their normals are +z and counted", "[background_map]") {
+TEST_CASE("background_map: points on a line have no plane, so their normals are +z and counted", "[background_map]") {
     TempDir dir;
     std::vector<PcdPoint> line;
     for (int i = 0; i < 10; ++i) line.push_back({1.0 * i, 0.5 * i, 2.0});
