@@ -8,6 +8,7 @@ and such an entry would pass without running anything. Each entry's own command 
 the entries must list each of the program's test cases once.
 
 Usage: catch_entries.py CTEST BUILD_DIR TEST_PROGRAM..."""
+import concurrent.futures
 import json
 import os
 import subprocess
@@ -19,6 +20,11 @@ def listed(command, cwd=None):
     return result.stdout.splitlines()
 
 
+def entry_selects(entry):
+    cwd = next((p["value"] for p in entry.get("properties", []) if p["name"] == "WORKING_DIRECTORY"), None)
+    return listed(entry["command"], cwd)
+
+
 ctest, build_dir, *programs = sys.argv[1:]
 shown = subprocess.run([ctest, "--test-dir", build_dir, "--show-only=json-v1"], capture_output=True, text=True, check=True)
 tests = json.loads(shown.stdout)["tests"]
@@ -27,12 +33,13 @@ for program in programs:
     cases = listed([program])
     entries = [t for t in tests if "command" in t and os.path.realpath(t["command"][0]) == os.path.realpath(program)]
     selected = []
-    for entry in entries:
-        cwd = next((p["value"] for p in entry.get("properties", []) if p["name"] == "WORKING_DIRECTORY"), None)
-        names = listed(entry["command"], cwd)
+    # Most of the time goes into starting the programs: a few at once.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        selections = pool.map(entry_selects, entries)
+    for entry, names in zip(entries, selections):
         if len(names) != 1 or not entry["name"].endswith(names[0]):
-            shown = names if len(names) <= 3 else f"{len(names)} test cases"
-            problems.append(f"ctest entry {entry['name']!r} selects {shown} of {program}")
+            what = names if len(names) <= 3 else f"{len(names)} test cases"
+            problems.append(f"ctest entry {entry['name']!r} selects {what} of {program}")
         selected += names
     if len(entries) != len(cases):
         problems.append(f"{program}: {len(entries)} ctest entries for {len(cases)} test cases")

@@ -19,6 +19,8 @@
 
 #include "ladarsim/dataset/input_error.h"
 #include "ladarsim/scene/background_map.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim::scene;
 using ladarsim::InputError;
@@ -374,11 +376,8 @@ TEST_CASE("background_map: bad files are InputErrors naming the file", "[backgro
 }
 
 TEST_CASE("background_map: the recorded Autzen map", "[background_map][data]") {
-    const fs::path file = fs::path(LADARSIM_SHARED_DIR) / "data/autzen/autzen_trim.pcd";
-    if (!fs::exists(file)) {
-        WARN("shared data absent, skipping: " << file);
-        return;
-    }
+    const fs::path file = ladarsim::test::shared_data("autzen/autzen_trim.pcd");
+    if (!fs::exists(file)) LADARSIM_SKIP("shared data not present: " << file);
     BackgroundLoadReport report;
     const auto t0 = std::chrono::steady_clock::now();
     const BackgroundMap map = load_background_map(file, {}, &report);
