@@ -34,12 +34,14 @@ grep -q "background.pcd has 0 points" "$work/stderr" || fail "detect does not sa
 grep -q "background" "$work/stderr" && fail "detect talks about a good background.pcd: $(cat "$work/stderr")"
 
 # A recorded dataset has none: detect warns.
-pcap="$src/../shared/data/vlp16/velodyne_vlp16.pcap"
+pcap="$shared_data/vlp16/velodyne_vlp16.pcap"
 if [ -f "$pcap" ]; then
   "$bin" import-velodyne "$pcap" --out "$work/rec" >/dev/null 2>&1 || fail "import failed"
   [ ! -e "$work/rec/background.pcd" ] || fail "a recorded dataset has a background.pcd"
   "$bin" detect "$work/rec" >/dev/null 2>"$work/stderr"
   grep -q "no background.pcd" "$work/stderr" || fail "detect does not warn about a recorded dataset without a map: $(cat "$work/stderr")"
+else
+  skip "$pcap absent, a recorded dataset's missing map not checked"
 fi
 
-if [ "$failures" -eq 0 ]; then echo "background rule: all checks passed"; else echo "background rule: $failures failed"; exit 1; fi
+finish "background rule"

@@ -5,7 +5,7 @@
 source "$(dirname "$0")/harness.sh"
 py=/usr/bin/python3
 if ! $py -c "import matplotlib" 2>/dev/null; then
-  echo "note: python3-matplotlib absent (scripts/setup.sh --plots); plot_eval not checked"; exit 0
+  skip "python3-matplotlib absent (scripts/setup.sh --plots); plot_eval not checked"; finish plot_eval
 fi
 $py - "$src/scripts/plot_eval.py" "$work" <<'PY' || fail "plot_eval.py does not draw what it should"
 import importlib.util, json, sys

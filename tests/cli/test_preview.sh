@@ -6,7 +6,7 @@
 source "$(dirname "$0")/harness.sh"
 py=/usr/bin/python3
 if ! $py -c "import matplotlib, numpy" 2>/dev/null; then
-  echo "note: python3-matplotlib absent (scripts/setup.sh --plots); preview not checked"; exit 0
+  skip "python3-matplotlib absent (scripts/setup.sh --plots); preview not checked"; finish preview
 fi
 "$bin" render "$src/tests/cli/small.json" --out "$work/d" --frames 4 --quiet >/dev/null 2>&1 || fail "render failed"
 $py - "$src/scripts" "$work/d" <<'PY' || fail "preview.py does not draw what it should"

@@ -18,6 +18,8 @@ grep -q "^range " "$work/stderr" || fail "table1: no progress lines: $(cat "$wor
 if command -v script >/dev/null; then
   script -qec "'$bin' render '$src/tests/cli/small.json' --out '$work/t' --frames 5 >/dev/null" "$work/typescript" >/dev/null 2>&1
   grep -q $'\r''frame 5/5' "$work/typescript" || fail "no updating line on a terminal: $(od -c "$work/typescript" | head -5)"
+else
+  skip "script(1) absent (bsdutils); the updating line on a terminal not checked"
 fi
 
-if [ "$failures" -eq 0 ]; then echo "progress: all checks passed"; else echo "progress: $failures failed"; exit 1; fi
+finish progress

@@ -16,7 +16,7 @@
 using namespace ladarsim;
 using ladarsim::test::ScratchDir;
 
-TEST_CASE("an absent, empty or earlier dataset directory may be replaced; anything else is refused", "[dataset_directory]") {
+TEST_CASE("an absent, empty or earlier dataset directory may be replaced, and anything else is refused", "[dataset_directory]") {
     const ScratchDir dir;
     CHECK(checked_dataset_dir(dir / "new") == dir / "new");
     CHECK(checked_dataset_dir((dir / "new").string() + "/") == dir / "new");
@@ -108,7 +108,7 @@ TEST_CASE("a mount point is a directory on another device than its parent, refus
     CHECK_THAT(e.problem(), Catch::Contains("mount point"));
 }
 
-TEST_CASE("--out through a symbolic link is the link's target; a link to nothing is refused", "[dataset_directory]") {
+TEST_CASE("an --out through a symbolic link is the link's target, and a link to nothing is refused", "[dataset_directory]") {
     const ScratchDir dir;
     std::filesystem::create_directories(dir / "target");
     std::filesystem::create_directory_symlink(dir / "target", dir / "link");

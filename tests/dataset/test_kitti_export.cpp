@@ -107,7 +107,7 @@ TEST_CASE("a tilted box becomes the tightest box about the vertical that holds i
     }
 }
 
-TEST_CASE("targets keep their names as label types; the scene is not labelled", "[kitti_export]") {
+TEST_CASE("targets keep their names as label types, and the scene is not labelled", "[kitti_export]") {
     CHECK(kitti_type("drone") == "Drone");
     CHECK(kitti_type("bird") == "Bird");
     CHECK(kitti_type("plane") == "Plane");

@@ -23,7 +23,7 @@ InputError error_of(const std::filesystem::path& file) {
 
 }  // namespace
 
-TEST_CASE("the geometry from sensor.derived, pointing where a frame has it; other keys are left alone", "[manifest]") {
+TEST_CASE("the geometry from sensor.derived, pointing where a frame has it, and other keys left alone", "[manifest]") {
     const test::ScratchDir dir;
     write_json(dir / "m.json", {{"software", {{"name", "ladarsim"}}},
                                 {"sensor", {{"beams_az", 7}, {"derived", derived()}}},

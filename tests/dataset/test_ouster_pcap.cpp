@@ -16,9 +16,10 @@
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/ouster_pcap.h"
-#include "../support/pcap_writer.h"
 #include "../support/ouster_captures.h"
+#include "../support/pcap_writer.h"
 #include "../support/scratch_dir.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 
@@ -177,10 +178,8 @@ TEST_CASE("the lowest Ouster channels see one flat ground a couple of metres und
 }
 
 TEST_CASE("Ouster metadata: both units' flat files, the sectioned layout of newer firmware, and one-line errors", "[ouster]") {
-    if (!std::filesystem::exists(data_file(kOs1, ".json")) || !std::filesystem::exists(data_file(kOs2, ".json"))) {
-        WARN("shared data not present: " << data_file(kOs1, ".json"));
-        return;
-    }
+    if (!std::filesystem::exists(data_file(kOs1, ".json")) || !std::filesystem::exists(data_file(kOs2, ".json")))
+        LADARSIM_SKIP("shared data not present: " << data_file(kOs1, ".json"));
     const OusterCalibration os1 = read_ouster_metadata(data_file(kOs1, ".json"));
     CHECK(os1.product_line == "OS-1-32-G");
     CHECK(os1.serial == "992101000280");

@@ -8,15 +8,14 @@
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/velodyne_pcap.h"
 #include "../support/scratch_dir.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 
 TEST_CASE("the recorded VLP-16 revolution decodes to its 19,579 returns at 2.4-110 m", "[velodyne]") {
-    const std::filesystem::path file = std::filesystem::path(LADARSIM_SHARED_DIR) / "data/vlp16/velodyne_vlp16.pcap";
-    if (!std::filesystem::exists(file)) {
-        WARN("shared data not present: " << file);
-        return;
-    }
+    const std::filesystem::path file = test::shared_data("vlp16/velodyne_vlp16.pcap");
+    if (!std::filesystem::exists(file)) LADARSIM_SKIP("shared data not present: " << file);
     const auto frames = read_velodyne_vlp16_pcap(file);
     std::size_t returns = 0;
     double lo = 1e9, hi = 0.0;

@@ -21,7 +21,7 @@ Eigen::Vector3d b_at(int frame) { return {600.0, 2.0 - 0.2 * frame, 5.8}; }
 
 }  // namespace
 
-TEST_CASE("two targets crossing keep their tracks; a one-frame blip is never confirmed", "[detect][multi_target]") {
+TEST_CASE("two targets crossing keep their tracks, and a one-frame blip is never confirmed", "[detect][multi_target]") {
     const SensorGeometry sensor{150, 20, 0.5, 0.5, 0.62};
     detect::DetectorConfig config;
     detect::MultiTargetTracker tracker(config, sensor, {});

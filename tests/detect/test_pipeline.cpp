@@ -112,7 +112,7 @@ TEST_CASE("the default lambda grows the radius by 1.2 of the coarser beam pitch 
     CHECK(vrbnn_radius_m(default_lambda(vlp16), vlp16, 10.0, 0.0) == Approx(1.2 * 2.0 * M_PI / 180.0 * 10.0));
 }
 
-TEST_CASE("outlier removal keeps points with nMin neighbours; boxes over 1 m are occlusions", "[detect]") {
+TEST_CASE("outlier removal keeps points with nMin neighbours, and boxes over 1 m are occlusions", "[detect]") {
     // A row of 8 points 3.5 cm apart: with radius 0.06 m each has at most 2 neighbours.
     const Points row = drone_at({600.0f, 0.0f, 0.0f}, 8, 1);
     CHECK(remove_outliers(row, 0.06, 3).empty());

@@ -5,17 +5,16 @@
 #include "ladarsim/experiments/table1.h"
 #include "ladarsim/scene/gltf_loader.h"
 #include "ladarsim/scene/procedural_models.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 using namespace ladarsim::experiments;
 using namespace ladarsim::sensor_model;
 
 TEST_CASE("procedural and real quadcopters of one span return alike at 200 m and 1 km", "[drone_models]") {
-    const std::filesystem::path file = std::filesystem::path(LADARSIM_SHARED_DIR) / "data/models/drone_nologo.glb";
-    if (!std::filesystem::exists(file)) {
-        WARN("shared model not present: " << file);
-        return;
-    }
+    const std::filesystem::path file = test::shared_data("models/drone_nologo.glb");
+    if (!std::filesystem::exists(file)) LADARSIM_SKIP("shared model not present: " << file);
     auto real = std::make_shared<scene::Model>(scene::load_gltf(file));
     // Scale the real mesh so its larger horizontal extent is the procedural one's 0.30 m, and give
     // it the same mixed reflectance (the file carries none).

@@ -1,6 +1,7 @@
-"""Set-up shared by the Python module's tests: where the module, the command line and the sources
-are, datasets the command line renders once per session, and a guard that fails a run in which no
-test passed (pytest itself exits 0 when every test was skipped)."""
+"""Set-up shared by the Python module's tests: where the module, the command line, the sources and
+the shared data are, datasets the command line renders once per session, and the run's verdict:
+a run in which no test passed fails, and one in which a test skipped (its shared data is missing)
+and none failed exits 77, which ctest reports as skipped (pytest itself exits 0 for both)."""
 import json
 import os
 import pathlib
@@ -36,20 +37,27 @@ def cli_small(tmp_path_factory):
     return out
 
 
+SKIPPED = 77  # the SKIP_RETURN_CODE of tests/CMakeLists.txt
 _passed = 0
+_skipped = 0
 
 
 def pytest_report_header(config):
-    return f"ladarsim module: {ladarsim.__file__}; command line: {CLI}"
+    return f"ladarsim module: {ladarsim.__file__}; command line: {CLI}; shared data: {SHARED_DIR}"
 
 
 def pytest_runtest_logreport(report):
-    global _passed
+    global _passed, _skipped
     if report.when == "call" and report.passed:
         _passed += 1
+    if report.skipped:
+        _skipped += 1
 
 
 def pytest_sessionfinish(session, exitstatus):
     if exitstatus == 0 and _passed == 0:
         print("\nno test passed (all skipped or none collected): failing the run")
         session.exitstatus = pytest.ExitCode.TESTS_FAILED
+    elif exitstatus == 0 and _skipped:
+        print(f"\n{_skipped} skipped, none failed: reporting the run as skipped (exit {SKIPPED})")
+        session.exitstatus = SKIPPED

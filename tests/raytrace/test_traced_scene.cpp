@@ -279,7 +279,7 @@ TEST_CASE("volumes: where a ray runs inside fog, from outside and from inside", 
     CHECK(crossings > 801);
 }
 
-TEST_CASE("volumes: rays grazing a cloud's outline never start inside it; a sensor in fog does", "[traced_scene]") {
+TEST_CASE("volumes: rays grazing a cloud's outline never start inside it, but a sensor in fog does", "[traced_scene]") {
     // An icosphere cloud of radius 10 m 1.4 km out (float vertices there are 0.1 mm apart) and
     // rays from the sensor aimed at its outline, where entry and exit nearly coincide and rounding
     // can order them either way: a segment may be short or absent, but never open at the sensor.

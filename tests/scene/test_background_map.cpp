@@ -19,6 +19,8 @@
 
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/background_map.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim::scene;
 using ladarsim::InputError;
@@ -188,7 +190,7 @@ TEST_CASE("background_map: a scanner position leaves true surface normals alone,
     for (const auto& n : map.normals) CHECK((n - expected).norm() < 1e-4f);
 }
 
-TEST_CASE("background_map: points on a line have no plane; their normals are +z and counted", "[background_map]") {
+TEST_CASE("background_map: points on a line have no plane, so their normals are +z and counted", "[background_map]") {
     TempDir dir;
     std::vector<PcdPoint> line;
     for (int i = 0; i < 10; ++i) line.push_back({1.0 * i, 0.5 * i, 2.0});
@@ -374,11 +376,8 @@ TEST_CASE("background_map: bad files are InputErrors naming the file", "[backgro
 }
 
 TEST_CASE("background_map: the recorded Autzen map", "[background_map][data]") {
-    const fs::path file = fs::path(LADARSIM_SHARED_DIR) / "data/autzen/autzen_trim.pcd";
-    if (!fs::exists(file)) {
-        WARN("shared data absent, skipping: " << file);
-        return;
-    }
+    const fs::path file = ladarsim::test::shared_data("autzen/autzen_trim.pcd");
+    if (!fs::exists(file)) LADARSIM_SKIP("shared data not present: " << file);
     BackgroundLoadReport report;
     const auto t0 = std::chrono::steady_clock::now();
     const BackgroundMap map = load_background_map(file, {}, &report);

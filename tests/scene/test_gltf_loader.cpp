@@ -13,6 +13,8 @@
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/gltf_loader.h"
 #include "../support/scratch_dir.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 using nlohmann::json;
@@ -258,11 +260,8 @@ TEST_CASE("malformed glTF is one InputError naming the file and the field", "[gl
 }
 
 TEST_CASE("a real third-party quadcopter loads whole", "[gltf]") {
-    const std::filesystem::path file = std::filesystem::path(LADARSIM_SHARED_DIR) / "data/models/drone_nologo.glb";
-    if (!std::filesystem::exists(file)) {
-        WARN("shared model not present: " << file);
-        return;
-    }
+    const std::filesystem::path file = test::shared_data("models/drone_nologo.glb");
+    if (!std::filesystem::exists(file)) LADARSIM_SKIP("shared model not present: " << file);
     scene::GltfLoadReport report;
     const scene::Model m = scene::load_gltf(file, &report);
     // Its README: 5,170 triangles, extent 65.5 x 82.4 x 36.8 mesh units; its one node scales by 0.01.

@@ -12,6 +12,8 @@
 #include "ladarsim/scene/background_map.h"
 #include "ladarsim/scene/las_file.h"
 #include "../support/scratch_dir.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 
@@ -78,11 +80,8 @@ TEST_CASE("LAS formats 0-3 and 6-8, versions 1.2-1.4: scaled coordinates, intens
 }
 
 TEST_CASE("the Autzen LAS and its PCD conversion hold the same points", "[las]") {
-    const std::filesystem::path base = std::filesystem::path(LADARSIM_SHARED_DIR) / "data/autzen";
-    if (!std::filesystem::exists(base / "autzen_trim.las")) {
-        WARN("shared data not present: " << base);
-        return;
-    }
+    const std::filesystem::path base = test::shared_data("autzen");
+    if (!std::filesystem::exists(base / "autzen_trim.las")) LADARSIM_SKIP("shared data not present: " << base);
     const auto las = scene::read_las(base / "autzen_trim.las");
     pcl::PointCloud<pcl::PointXYZ> pcd;
     REQUIRE(pcl::io::loadPCDFile(base.string() + "/autzen_trim.pcd", pcd) == 0);

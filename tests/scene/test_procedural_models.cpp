@@ -148,7 +148,7 @@ TEST_CASE("write_gltf writes a .glb with the glTF magic and a .gltf that is glTF
     CHECK(j["materials"][0]["extras"]["ladar"]["reflectance"].get<double>() == 0.35);
 }
 
-TEST_CASE("birds, aircraft and clouds have their specified sizes; clouds are volumes", "[procedural]") {
+TEST_CASE("birds, aircraft and clouds have their specified sizes, and clouds are volumes", "[procedural]") {
     const Model bird = make_bird(0.4);
     CHECK(bird.bounds().sizes().y() == Approx(0.4).epsilon(0.01));
     CHECK(closed_and_consistent(bird));

@@ -216,7 +216,7 @@ TEST_CASE("scene_file: yaw, pitch and roll of a fixed object", "[scene_file]") {
     check_near(q * Eigen::Vector3d::UnitX(), {0, std::cos(std::numbers::pi / 6), 0.5});
 }
 
-TEST_CASE("scene_file: models are loaded once and shared; overrides get a private copy", "[scene_file]") {
+TEST_CASE("scene_file: models are loaded once and shared, and overrides get a private copy", "[scene_file]") {
     ScenarioDir dir;
     const Scene scene = dir.read(R"({"objects": [
       {"id": 1, "class": "drone", "model": "../models/box.gltf", "size_m": 0.3,

@@ -9,6 +9,8 @@
 #include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "ladarsim/sensor_model/render/render_dataset.h"
 #include "../support/scratch_dir.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 using namespace ladarsim::sensor_model;
@@ -62,8 +64,8 @@ Seen render_and_check(const Scenario& s, std::initializer_list<std::uint64_t> fr
 }
 
 bool have_autzen() {
-    if (std::filesystem::exists(std::filesystem::path(LADARSIM_SHARED_DIR) / "data/autzen/autzen_trim.pcd")) return true;
-    WARN("shared data not present: the Autzen variants are not rendered");
+    if (std::filesystem::exists(test::shared_data("autzen/autzen_trim.pcd"))) return true;
+    test::skip("shared data not present: the Autzen variants are not rendered");
     return false;
 }
 

@@ -11,21 +11,20 @@
 #include "ladarsim/sensor_model/sensor/sensor.h"
 #include "../support/rerender_recorded.h"
 #include "../support/scratch_dir.h"
+#include "../support/shared_data.h"
+#include "../support/skip.h"
 
 using namespace ladarsim;
 using namespace ladarsim::sensor_model;
 
 namespace {
 
-std::filesystem::path capture_file() { return std::filesystem::path(LADARSIM_SHARED_DIR) / "data/vlp16/velodyne_vlp16.pcap"; }
+std::filesystem::path capture_file() { return test::shared_data("vlp16/velodyne_vlp16.pcap"); }
 
 }  // namespace
 
 TEST_CASE("the recorded revolution turns at the VLP-16 preset's rate, direction and step", "[velodyne]") {
-    if (!std::filesystem::exists(capture_file())) {
-        WARN("shared data not present: " << capture_file());
-        return;
-    }
+    if (!std::filesystem::exists(capture_file())) LADARSIM_SKIP("shared data not present: " << capture_file());
     const Sensor preset = sensor_preset("velodyne_vlp16");
     const ScanPattern& raster = *preset.scan;
     const double preset_rate = (raster.beam(0, 1).az_offset_rad - raster.beam(0, 0).az_offset_rad) /
@@ -63,10 +62,7 @@ TEST_CASE("the VLP-16 preset, re-rendering the recorded revolution's own scene, 
     // recording's origin fires its own beams (0.2 deg grid, 3 x 1.5 mrad, estimated radiometry)
     // into it. Every recorded return whose surface the preset can see (reflectivity byte >= 1,
     // within its 100 m) should come back on the nearest beam, at the recorded range.
-    if (!std::filesystem::exists(capture_file())) {
-        WARN("shared data not present: " << capture_file());
-        return;
-    }
+    if (!std::filesystem::exists(capture_file())) LADARSIM_SKIP("shared data not present: " << capture_file());
     const test::ScratchDir dir;
     const std::vector<Frame> frames = read_velodyne_vlp16_pcap(capture_file());
     const Frame& recorded = *std::max_element(frames.begin(), frames.end(), [](const Frame& a, const Frame& b) {
