@@ -62,7 +62,7 @@ trap 'pkill -P $server 2>/dev/null; wait $server 2>/dev/null; rm -rf "$work"' EX
 for _ in $(seq 100); do grep -q http "$work/view.log" && break; sleep 0.1; done
 url=$(grep -o 'http://[^ ]*' "$work/view.log")
 [ -n "$url" ] || fail "view printed no URL: $(cat "$work/view.log")"
-$py - "$url" <<'PY' || fail "the viewer's files are not served"
+[ -n "$url" ] && $py - "$url" <<'PY' || fail "the viewer's files are not served"
 import sys, urllib.request
 url = sys.argv[1]
 for path, text in (("", b"importmap"), ("viewer/viewer.js", b"OrbitControls"),
