@@ -7,6 +7,8 @@
 #include <string>
 
 #include "command.h"
+#include "data_dir.h"
+#include "plot_script.h"
 #include "ladarsim/bench/benchmarks.h"
 #include "ladarsim/core/json_file.h"
 
@@ -15,20 +17,24 @@ namespace {
 
 struct BenchCommand {
     bench::BenchOptions bench_options;
-    std::string bench_json;
+    std::string bench_json, bench_plot;
 
     CLI::App* add(CLI::App& app) {
         auto* bench_cmd = app.add_subcommand(
             "bench", "Measure speed against accuracy: our render against raw Embree on the same rays, the real-time factor "
                      "of the default scenario at each accuracy, beams/s against point-count/energy/range error for a drone "
-                     "at 200, 1000, 2000 m, and scaling with beams, triangles and map points (plot: scripts/plot_bench.py)");
+                     "at 200, 1000, 2000 m, and scaling with beams, triangles and map points");
         bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about a minute)");
         bench_cmd->add_option("--json", bench_json, "Write every figure to this JSON file");
+        auto* plot = bench_cmd->add_option("--plot", bench_plot, "Draw speed against error into this PNG (needs python3-matplotlib)");
+        bench_options.scenario = data_dir() / "scenarios" / "default.json";  // the bundled one, wherever it is installed
         bench_cmd->add_option("--scenario", bench_options.scenario, "Scenario to time")->check(CLI::ExistingFile)->capture_default_str();
         bench_cmd->add_option("--hard-case", bench_options.hard_case,
-                              "Run only the hard cases whose name contains this (e.g. 'recorded map', 'edge'), nothing else");
+                              "Run only the hard cases whose name contains this (e.g. 'recorded map', 'edge'), nothing else")
+            ->excludes(plot);  // the plot is of the accuracy curves, which a hard case alone does not measure
         bench_cmd->add_option("--map-scenario", bench_options.map_scenario,
-                              "Scenario over a recorded map, for speed against error there (skipped if it cannot load)")
+                              "Scenario over a recorded map, for speed against error there (skipped if it cannot load: the map\n"
+                              "lies in ../shared/data beside a checkout, so the default is found from a checkout's top)")
             ->capture_default_str();
         return bench_cmd;
     }
@@ -93,9 +99,10 @@ struct BenchCommand {
         if (!bench_json.empty()) {
             write_json(bench_json, result);
             std::printf("wrote %s\n", bench_json.c_str());
-        } else {
+        } else if (bench_plot.empty()) {
             std::cout << result.dump(2) << "\n";
         }
+        if (!bench_plot.empty()) plot_figures("plot_bench.py", result, bench_json, bench_plot);
         return 0;
     }
 };

@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,12 +49,8 @@ struct EvalCommand {
                     "%d misses, %d false positives; centre-distance AP %.3f\n",
                     tracking["objects"].get<int>(), figure(scores["mota"]), figure(scores["motp_m"]), scores["id_switches"].get<int>(),
                     tracking["misses"].get<int>(), tracking["false_positives"].get<int>(), figure(scores["ap_centre"]));
-        const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
-        if (!json_path.empty()) write_json(json_path, scores);
-        if (!eval_plot.empty()) {
-            run_plot_script("plot_eval.py", json_path, eval_plot);
-            if (eval_json.empty()) std::filesystem::remove(json_path);
-        }
+        if (!eval_json.empty()) write_json(eval_json, scores);
+        if (!eval_plot.empty()) plot_figures("plot_eval.py", scores, eval_json, eval_plot);
         return 0;
     }
 };

@@ -1,7 +1,6 @@
 // `ladarsim table1`: the paper's Table 1 against its equations and rendered counts (docs/table1.md).
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -59,13 +58,7 @@ struct Table1Command {
             out.stream() << markdown;
             out.commit();
         }
-        if (!table_plot.empty()) {
-            // The plot reads the numbers back from JSON, so it always shows what was written.
-            const std::string json_for_plot = table_json.empty() ? table_plot + ".json" : table_json;
-            if (table_json.empty()) write_json(json_for_plot, rows);
-            run_plot_script("plot_table1.py", json_for_plot, table_plot);
-            if (table_json.empty()) std::filesystem::remove(json_for_plot);
-        }
+        if (!table_plot.empty()) plot_figures("plot_table1.py", rows, table_json, table_plot);
         return 0;
     }
 };

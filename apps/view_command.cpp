@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command.h"
+#include "data_dir.h"
 #include "stop_signal.h"
 #include "viewer_server.h"
 
@@ -30,7 +31,7 @@ struct ViewCommand {
     int run() {
         apps::ViewerOptions options;
         options.run_dir = view_dir;
-        options.viewer_dir = LADARSIM_SOURCE_DIR "/apps/viewer";
+        options.viewer_dir = data_file("viewer");
         options.port = view_port;
         std::signal(SIGINT, request_stop);
         std::signal(SIGTERM, request_stop);

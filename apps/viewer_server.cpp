@@ -138,7 +138,7 @@ void serve_viewer(const ViewerOptions& o, const std::function<void(const std::st
     if (!fs::is_regular_file(o.run_dir / "manifest.json"))
         throw InputError(o.run_dir.string(), "DIR", "not a ladarsim run: no manifest.json");
     if (!fs::is_regular_file(o.viewer_dir / "node_modules" / "three" / "build" / "three.module.js"))
-        throw InputError((o.viewer_dir / "node_modules").string(), "three", "three.js is not installed: run scripts/setup.sh");
+        throw InputError((o.viewer_dir / "node_modules").string(), "three", "three.js is missing: scripts/setup.sh installs it, then build (and install) again");
     const int server = socket(AF_INET, SOCK_STREAM, 0);
     if (server < 0) throw std::runtime_error("cannot open a socket");
     const int yes = 1;

@@ -6,8 +6,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh --plots
 bash scripts/build.sh
 ./build/apps/ladarsim render assets/scenarios/default.json --out out/default
-# Debian's own interpreter: its matplotlib is the one setup.sh installed.
-/usr/bin/python3 scripts/preview.py out/default
+./build/apps/ladarsim preview out/default
 # Algorithm 1 on the frames, scored against the ground truth. The default lambda comes from the
 # dataset's sensor (1.2 line pitches, 180 here): with Algorithm 1's lambda = 7 the V-RBNN radius
 # (2 cm at 600 m) is below the beam spacing of physically rendered frames (docs/detection.md).

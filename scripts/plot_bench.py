@@ -1,9 +1,10 @@
 """Draws the speed-vs-error curves of `ladarsim bench --json FILE`: beams/s against the error of a
 drone's point count and energy, adaptive tolerances against fixed sub-ray counts, at each distance.
 
-usage: /usr/bin/python3 scripts/plot_bench.py bench.json [out.png]
+usage: /usr/bin/python3 scripts/plot_bench.py bench.json [out.png]   (or: ladarsim bench --plot out.png)
 """
 import json
+import os
 import sys
 
 import matplotlib
@@ -42,7 +43,9 @@ def main():
     fig.suptitle("0.3 m drone in front of terrain: speed against error "
                  "(labels: tolerance for adaptive, sub-rays per beam for fixed; grey: the sensor's real time)")
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    tmp = out + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, out)
     print(f"wrote {out}")
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Draws a rendered dataset's frames with their ground-truth boxes into DIR/preview.png.
 
-Usage: preview.py DATASET_DIR [--frames N]
+Usage: preview.py DATASET_DIR [--frames N]   (or: ladarsim preview DATASET_DIR [--frames N])
 
 Each row is one frame: left, the whole field in azimuth/elevation, points coloured by range on
 one scale for the whole dataset (false alarms in grey, left out of the scale and of the axes),

@@ -4,11 +4,12 @@
 # with it; --plots is still accepted)
 set -euo pipefail
 
+# strace: tests/cli/test_install.sh watches which files the installed program opens.
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libspdlog-dev libtbb-dev
   libopenexr-dev libcli11-dev librandom123-dev libpcl-dev catch2 libopenmpi-dev openmpi-bin
-  chromium python3
+  chromium python3 strace
   pybind11-dev python3-pybind11 python3-pytest python3-numpy python3-matplotlib
 )
 # npm fetches the viewer's three.js; any Node.js that brings npm will do.

@@ -47,8 +47,9 @@ for t in labels:
 if not any(t.get_text().startswith("building") for t in labels): bad.append("the building is not labelled")
 if bad: print("\n".join(sorted(set(bad)))); sys.exit(1)
 PY
-# And as a user runs it.
-$py "$src/scripts/preview.py" "$work/d" >/dev/null 2>"$work/stderr" || fail "preview.py failed: $(cat "$work/stderr")"
+# And as a user runs it: the program runs its own copy of the script.
+rm -f "$work/d/preview.png"
+"$bin" preview "$work/d" >/dev/null 2>"$work/stderr" || fail "ladarsim preview failed: $(cat "$work/stderr")"
 [ -s "$work/d/preview.png" ] || fail "no preview.png"
 
 if [ "$failures" -eq 0 ]; then echo "preview: all checks passed"; else echo "preview: $failures failed"; exit 1; fi
