@@ -22,6 +22,7 @@ void add_sensor_command(CLI::App& app, int& exit_code);
 void add_table1_command(CLI::App& app, int& exit_code);
 void add_detect_command(CLI::App& app, int& exit_code);
 void add_eval_command(CLI::App& app, int& exit_code);
+void add_benchmark_command(CLI::App& app, int& exit_code);
 void add_import_velodyne_command(CLI::App& app, int& exit_code);
 void add_import_ouster_command(CLI::App& app, int& exit_code);
 void add_export_kitti_command(CLI::App& app, int& exit_code);

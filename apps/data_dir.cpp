@@ -1,6 +1,6 @@
 #include "data_dir.h"
 
-#include "ladarsim/dataset/input_error.h"
+#include "ladarsim/core/input_error.h"
 
 namespace ladarsim::apps {
 

@@ -12,19 +12,23 @@ namespace {
 
 struct ExportKittiCommand {
     std::string dataset_dir, out_dir;
+    KittiExportOptions options;
 
     CLI::App* add(CLI::App& app) {
         auto* export_cmd = app.add_subcommand(
             "export-kitti",
             "Write a dataset in the KITTI object-detection layout: training/velodyne/NNNNNN.bin (float32 x y z "
             "intensity, the sensor frame, intensity / the dataset's largest), training/label_2 (drones, birds and "
-            "planes with returns, boxes from ground truth), training/calib (no camera: the standard axis "
+            "planes with returns, boxes from ground truth grown to hold their returns), training/calib (no camera: the standard axis "
             "permutation), ladarsim_export.json (source, frame numbers, class map); see docs/kitti.md");
         export_cmd->add_option("dir", dataset_dir, "Dataset directory (frames/*.pcd, manifest.json, ground_truth.json if any)")
             ->required();
         export_cmd->add_option("--out", out_dir,
                                "Export directory: absent, empty or an earlier export (files of yours in it are kept)")
             ->required();
+        export_cmd->add_flag("--exact-boxes", options.exact_boxes,
+                             "Label boxes are ground truth's exactly, not grown to hold the object's returns (which lie on "
+                             "beam axes, up to half a footprint beside it); ladarsim_export.json keeps the exact boxes either way");
         return export_cmd;
     }
 
@@ -32,7 +36,7 @@ struct ExportKittiCommand {
         KittiExportProgress progress;
         progress.intensity_scanned = progress_lines("intensity scan, frame");
         progress.frame_written = progress_lines("export, frame");
-        const KittiExportSummary s = export_kitti(dataset_dir, out_dir, progress);
+        const KittiExportSummary s = export_kitti(dataset_dir, out_dir, options, progress);
         std::printf("exported %d frames, %llu returns, %llu labels from %s into %s (KITTI layout, intensity / %g)\n",
                     s.frames, static_cast<unsigned long long>(s.returns), static_cast<unsigned long long>(s.labels),
                     dataset_dir.c_str(), s.out.c_str(), static_cast<double>(s.intensity_scale));

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
     apps::add_table1_command(app, exit_code);
     apps::add_detect_command(app, exit_code);
     apps::add_eval_command(app, exit_code);
+    apps::add_benchmark_command(app, exit_code);
     apps::add_import_velodyne_command(app, exit_code);
     apps::add_import_ouster_command(app, exit_code);
     apps::add_export_kitti_command(app, exit_code);

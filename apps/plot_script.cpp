@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "data_dir.h"
-#include "ladarsim/dataset/json_file.h"
+#include "ladarsim/core/json_file.h"
 
 extern char** environ;
 

@@ -4,9 +4,10 @@
 Usage: plot_eval.py EVAL.json OUT.png
 
 Frames without a detection have no L2 (gaps); with none at all the L2 panel says so instead of
-drawing an empty axis about 0. The supervised run's re-initialisations (IoU 1 by construction,
-the tracker placed on the ground truth) are marked as vertical lines, not drawn as IoU, so that
-they do not squash the real curve: the IoU axis is scaled to the IoUs measured.
+drawing an empty axis about 0. Scores of `ladarsim benchmark` also hold a supervised run: its
+re-initialisations (IoU 1 by construction, the tracker placed on the ground truth) are marked as
+vertical lines, not drawn as IoU, so that they do not squash the real curve: the IoU axis is
+scaled to the IoUs measured. `eval`'s scores have no supervised run, and the plot draws none.
 """
 import json
 import math
@@ -25,8 +26,11 @@ def draw(e):
     fig, (l2, iou) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     l2_values = [f["l2_m"] if f["l2_m"] is not None else float("nan") for f in per_frame]
     mean_l2 = e["mean_l2_m"] if e["mean_l2_m"] is not None else float("nan")
-    l2.set_title(f"{e.get('method', '')}: mean L2 {mean_l2:.3f} m, mean IoU {e['mean_iou']:.3f}, "
-                 f"EAO {e['eao']:.3f}, {e['failures']} failures")
+    supervised_run = "eao" in e
+    title = f"{e.get('method', '')}: mean L2 {mean_l2:.3f} m, mean IoU {e['mean_iou']:.3f}"
+    if supervised_run:
+        title += f", EAO {e['eao']:.3f}, {e['failures']} failures"
+    l2.set_title(title)
     l2.set_ylabel("L2 distance (m)")
     l2.grid(alpha=0.3)
     measured = [v for v in l2_values if not math.isnan(v)]
@@ -38,9 +42,10 @@ def draw(e):
         l2.text(0.5, 0.5, "no detections: no L2 distance in any frame", transform=l2.transAxes,
                 ha="center", va="center", fontsize=11, color="grey")
     ious = [f["iou"] for f in per_frame]
-    supervised = [float("nan") if f.get("initialised") else f["supervised_iou"] for f in per_frame]
+    supervised = [float("nan") if f.get("initialised") else f["supervised_iou"] for f in per_frame] if supervised_run else []
     iou.plot(frames, ious, "g.-", label="IoU")
-    iou.plot(frames, supervised, "r:", label="IoU, supervised (VOT resets)")
+    if supervised_run:
+        iou.plot(frames, supervised, "r:", label="IoU, supervised (VOT resets)")
     resets = [f["frame"] for f in per_frame if f.get("initialised")]
     for k, frame in enumerate(resets):
         iou.axvline(frame, color="red", alpha=0.25, linewidth=1, label="supervised re-initialisation" if k == 0 else None)

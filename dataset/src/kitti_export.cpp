@@ -85,16 +85,27 @@ std::vector<std::optional<FrameGroundTruth>> ground_truth_of_frames(const std::f
     return of_frames;
 }
 
-/// The label_2 lines of a frame: its objects of a labelled class with returns in it.
-std::vector<std::string> label_lines(const std::vector<GroundTruthObject>& truth, const std::vector<Return>& returns) {
-    std::map<std::uint32_t, std::uint32_t> returns_of_object;
-    for (const Return& r : returns) ++returns_of_object[r.object_id];
-    std::vector<std::string> lines;
+/// One label of a frame: the line label_2 holds, and what ladarsim_export.json records of it.
+struct Label {
+    std::string line;
+    nlohmann::json record;  ///< {"id", "type", "returns", "exact_label": the line with ground truth's box}
+};
+
+/// The labels of a frame: its objects of a labelled class with returns in it.
+std::vector<Label> frame_labels(const std::vector<GroundTruthObject>& truth, const std::vector<Return>& returns,
+                                const KittiExportOptions& options) {
+    std::map<std::uint32_t, std::vector<Eigen::Vector3d>> returns_of_object;
+    for (const Return& r : returns) returns_of_object[r.object_id].push_back(r.position_sensor.cast<double>());
+    std::vector<Label> labels;
     for (const GroundTruthObject& o : truth) {
         const auto type = kitti_type(o.object_class);
-        if (type && returns_of_object[o.object_id] > 0) lines.push_back(kitti_label_line(*type, kitti_box(o.box_sensor)));
+        const auto& own = returns_of_object[o.object_id];
+        if (!type || own.empty()) continue;
+        const std::string exact = kitti_label_line(*type, kitti_box(o.box_sensor));
+        labels.push_back({options.exact_boxes ? exact : kitti_label_line(*type, kitti_label_box(o.box_sensor, own)),
+                          {{"id", o.object_id}, {"type", *type}, {"returns", own.size()}, {"exact_label", exact}}});
     }
-    return lines;
+    return labels;
 }
 
 float largest_intensity(const std::vector<std::filesystem::path>& pcds, const KittiExportProgress& progress) {
@@ -107,7 +118,7 @@ float largest_intensity(const std::vector<std::filesystem::path>& pcds, const Ki
 }
 
 nlohmann::json export_record(const std::filesystem::path& dataset_dir, const Manifest& manifest, float intensity_scale,
-                             nlohmann::json frames) {
+                             const KittiExportOptions& options, nlohmann::json frames) {
     return {{"software", software_json()},
             {"exported_from", dataset_dir.string()},
             {"dataset_id", manifest.id},
@@ -117,37 +128,78 @@ nlohmann::json export_record(const std::filesystem::path& dataset_dir, const Man
             {"intensity", {{"kitti", "ladarsim intensity (primary photo-electrons, or the recording's unit) / scale, "
                                      "negative values written as 0"},
                            {"scale", intensity_scale}}},
-            {"labels", "one per object of a labelled class with returns in the frame; box: the tightest box turned "
-                       "about the vertical only that encloses ground truth's box_sensor; truncated 0, occluded 3 "
+            {"labels", "one per object of a labelled class with returns in the frame, in ground truth's order (frames[].labels: "
+                       "id, type, returns, exact_label); exact box: the tightest box turned about the vertical only "
+                       "that encloses ground truth's box_sensor; label box: see label_boxes; truncated 0, occluded 3 "
                        "(unknown), bbox -1 -1 -1 -1 (no image)"},
+            {"label_boxes", options.exact_boxes ? "exact" : "holding the returns"},
+            {"label_boxes_are", options.exact_boxes
+                                    ? "the exact boxes (--exact-boxes)"
+                                    : "the exact box grown about its heading to the tightest box holding it and every return of "
+                                      "the object label_margin_m inside its faces (a return lies on its beam's axis, up to half "
+                                      "a footprint beside the object)"},
+            {"label_margin_m", kKittiLabelMargin_m},
             {"class_map", type_of_class()},
             {"not_labelled", "every other class (the scene: building, terrain, tree, cloud, background)"},
             {"frames", std::move(frames)}};
 }
 
-}  // namespace
+/// The heading of an upright box about a ground-truth box, and its axes in the velodyne frame:
+/// along it, across it (to its left), up.
+struct Heading {
+    double yaw = 0.0;
+    Eigen::Matrix3d axes;  ///< columns: along, across, up
+};
 
-KittiBox kitti_box(const OrientedBox& box_sensor) {
-    const Eigen::Matrix3d axes = box_sensor.orientation.normalized().toRotationMatrix();
+/// The box's nose (own x axis) projected onto the horizontal plane, or its left axis turned back
+/// a quarter when the nose points straight up or down.
+Heading heading_of(const OrientedBox& box) {
+    const Eigen::Matrix3d axes = box.orientation.normalized().toRotationMatrix();
     const Eigen::Vector3d nose = axes.col(0), left = axes.col(1);
-    const double yaw = std::hypot(nose.x(), nose.y()) > 1e-9 ? std::atan2(nose.y(), nose.x())
-                                                               : std::atan2(left.y(), left.x()) - kPi / 2;
-    const Eigen::Vector3d along(std::cos(yaw), std::sin(yaw), 0.0), across(-std::sin(yaw), std::cos(yaw), 0.0),
-        up(0.0, 0.0, 1.0);
-    // Extent of the box along a direction: its three edges projected on it.
-    const auto extent = [&](const Eigen::Vector3d& direction) {
-        return (axes.transpose() * direction).cwiseAbs().dot(box_sensor.size);
-    };
+    Heading h;
+    h.yaw = std::hypot(nose.x(), nose.y()) > 1e-9 ? std::atan2(nose.y(), nose.x()) : std::atan2(left.y(), left.x()) - kPi / 2;
+    h.axes << std::cos(h.yaw), -std::sin(h.yaw), 0.0, std::sin(h.yaw), std::cos(h.yaw), 0.0, 0.0, 0.0, 1.0;
+    return h;
+}
+
+/// Extents of the upright box about `box` along the heading's axes: its three edges projected on each.
+Eigen::Vector3d upright_extents(const OrientedBox& box, const Heading& h) {
+    const Eigen::Matrix3d axes = box.orientation.normalized().toRotationMatrix();
+    return (h.axes.transpose() * axes).cwiseAbs() * box.size;
+}
+
+/// The KITTI box of the upright box about `centre` (velodyne frame) with `extents` along the
+/// heading's axes.
+KittiBox kitti_box_of(const Eigen::Vector3d& centre, const Eigen::Vector3d& extents, double yaw) {
     KittiBox k;
-    k.length_m = extent(along);
-    k.width_m = extent(across);
-    k.height_m = extent(up);
-    k.bottom_centre_camera = camera_from_velodyne(box_sensor.centre - Eigen::Vector3d(0.0, 0.0, k.height_m / 2));
+    k.length_m = extents.x();
+    k.width_m = extents.y();
+    k.height_m = extents.z();
+    k.bottom_centre_camera = camera_from_velodyne(centre - Eigen::Vector3d(0.0, 0.0, k.height_m / 2));
     // A nose along velodyne (cos yaw, sin yaw, 0) is camera (-sin yaw, 0, cos yaw), which KITTI's
     // roty(ry) makes of its +x when ry = -yaw - pi/2.
     k.rotation_y_rad = wrapped(-yaw - kPi / 2);
     k.alpha_rad = wrapped(k.rotation_y_rad - std::atan2(k.bottom_centre_camera.x(), k.bottom_centre_camera.z()));
     return k;
+}
+
+}  // namespace
+
+KittiBox kitti_box(const OrientedBox& box_sensor) {
+    const Heading h = heading_of(box_sensor);
+    return kitti_box_of(box_sensor.centre, upright_extents(box_sensor, h), h.yaw);
+}
+
+KittiBox kitti_label_box(const OrientedBox& box_sensor, const std::vector<Eigen::Vector3d>& returns) {
+    const Heading h = heading_of(box_sensor);
+    // The faces along the heading's axes, relative to ground truth's centre, pushed out to hold each return.
+    Eigen::Vector3d high = upright_extents(box_sensor, h) / 2, low = -high;
+    for (const Eigen::Vector3d& p : returns) {
+        const Eigen::Vector3d local = h.axes.transpose() * (p - box_sensor.centre);
+        high = high.cwiseMax((local.array() + kKittiLabelMargin_m).matrix());
+        low = low.cwiseMin((local.array() - kKittiLabelMargin_m).matrix());
+    }
+    return kitti_box_of(box_sensor.centre + h.axes * ((high + low) / 2), high - low, h.yaw);
 }
 
 std::optional<std::string> kitti_type(const std::string& object_class) {
@@ -197,7 +249,7 @@ const OutputLayout& kitti_layout() {
 }
 
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                                const KittiExportProgress& progress) {
+                                const KittiExportOptions& options, const KittiExportProgress& progress) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dataset_dir, ec))
         throw InputError(dataset_dir.string(), "DIR",
@@ -221,23 +273,26 @@ KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const 
         const std::string stem = frame_file_stem(i);
         write_text(staging / "training" / "velodyne" / (stem + ".bin"), velodyne_bytes(returns, summary.intensity_scale));
         nlohmann::json entry = {{"kitti", stem}, {"pcd", "frames/" + pcds[i].filename().string()}, {"returns", returns.size()}};
-        std::vector<std::string> lines;
+        std::vector<Label> labels;
         if (truth[i]) {
-            lines = label_lines(truth[i]->objects, returns);
+            labels = frame_labels(truth[i]->objects, returns, options);
             entry["frame_index"] = truth[i]->index;
         }
-        std::string labels;
-        for (const auto& line : lines) labels += line + "\n";
-        write_text(staging / "training" / "label_2" / (stem + ".txt"), labels);
-        entry["labels"] = lines.size();
+        std::string text;
+        entry["labels"] = nlohmann::json::array();
+        for (const auto& label : labels) {
+            text += label.line + "\n";
+            entry["labels"].push_back(label.record);
+        }
+        write_text(staging / "training" / "label_2" / (stem + ".txt"), text);
         frames.push_back(std::move(entry));
-        summary.labels += lines.size();
+        summary.labels += labels.size();
         write_text(staging / "training" / "calib" / (stem + ".txt"), kitti_calib_text());
         summary.returns += returns.size();
         if (progress.frame_written) progress.frame_written(static_cast<int>(i + 1), static_cast<int>(pcds.size()));
     }
     summary.frames = static_cast<int>(pcds.size());
-    write_json(staging / "ladarsim_export.json", export_record(source, manifest, summary.intensity_scale, std::move(frames)));
+    write_json(staging / "ladarsim_export.json", export_record(source, manifest, summary.intensity_scale, options, std::move(frames)));
     summary.kept = swap_in_output(staging, summary.out, kitti_layout());
     return summary;
 }

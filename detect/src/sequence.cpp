@@ -1,8 +1,6 @@
 #include "ladarsim/detect/sequence.h"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <tuple>
 #include <string>
@@ -14,7 +12,6 @@
 #include "ladarsim/dataset/manifest.h"
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/clustering.h"
-#include "ladarsim/detect/expected_overlap.h"
 
 namespace ladarsim::detect {
 
@@ -109,17 +106,11 @@ double overlap(const Detection& d, ScoredBox box, Overlap kind, const OrientedBo
 namespace {
 
 nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Vector3d vector_of(const nlohmann::json& v) { return {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()}; }
 /// A box as detections files hold it: {"centre_m", "size_m"}.
 nlohmann::json box_json(const OrientedBox& b) { return {{"centre_m", vector_json(b.centre)}, {"size_m", vector_json(b.size)}}; }
-OrientedBox box_of(const nlohmann::json& j) {
-    OrientedBox b;
-    b.centre = vector_of(j.at("centre_m"));
-    b.size = vector_of(j.at("size_m"));
-    return b;
-}
 
-/// The names supervised_runs and a detection report give the scored boxes and overlaps.
+}  // namespace
+
 const std::vector<std::tuple<std::string, ScoredBox, Overlap>>& scored_kinds() {
     static const std::vector<std::tuple<std::string, ScoredBox, Overlap>> kinds = {
         {"points_3d", ScoredBox::points, Overlap::volume},
@@ -128,8 +119,6 @@ const std::vector<std::tuple<std::string, ScoredBox, Overlap>>& scored_kinds() {
         {"sensor_bev", ScoredBox::sensor_aware, Overlap::bev}};
     return kinds;
 }
-
-}  // namespace
 
 SupervisedRuns supervised_runs(const Sequence& s, const DetectorConfig& config, std::uint32_t target) {
     SupervisedRuns runs;
@@ -192,74 +181,6 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
     return run;
 }
 
-nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRuns& supervised,
-                        std::uint32_t target, std::pair<int, int> interval) {
-    nlohmann::json per_frame = nlohmann::json::array();
-    double l2_sum = 0.0;
-    int l2_count = 0, lost = 0;
-    std::map<std::string, double> iou_sum;
-    std::vector<double> ious, l2s;
-    const SupervisedRun& headline = supervised.at("sensor_3d");
-    for (std::size_t i = 0; i < detections.size(); ++i) {
-        const auto truth = truth_box(s, i, target);
-        if (!truth) throw InputError("ground_truth.json", "frames[" + std::to_string(i) + "]", "no box for the target");
-        const Detection& d = detections[i];
-        std::map<std::string, double> iou;
-        for (const auto& [name, box, kind] : scored_kinds()) {
-            iou[name] = overlap(d, box, kind, *truth);
-            iou_sum[name] += iou[name];
-        }
-        const double l2 = d.found ? centre_distance_m(d.box, *truth) : std::numeric_limits<double>::infinity();
-        ious.push_back(iou["sensor_3d"]);
-        l2s.push_back(l2);
-        if (d.found) {
-            l2_sum += l2;
-            ++l2_count;
-        }
-        if (iou["sensor_3d"] <= 0.0) ++lost;
-        per_frame.push_back({{"frame", d.frame}, {"found", d.found}, {"predicted", d.predicted}, {"iou", iou["sensor_3d"]},
-                             {"iou_bev", iou["sensor_bev"]}, {"points_iou", iou["points_3d"]}, {"points_iou_bev", iou["points_bev"]},
-                             {"l2_m", d.found ? nlohmann::json(l2) : nlohmann::json(nullptr)},
-                             {"supervised_iou", headline.iou[i]}, {"initialised", static_cast<bool>(headline.initialised[i])}});
-    }
-    const auto n = static_cast<double>(detections.size());
-    // One-pass success (fraction of frames with IoU >= t, 21 thresholds) and precision (L2 <= d).
-    nlohmann::json success = nlohmann::json::array(), precision = nlohmann::json::object();
-    double auc = 0.0;
-    for (int k = 0; k <= 20; ++k) {
-        const double t = k / 20.0;
-        const double fraction = std::count_if(ious.begin(), ious.end(), [&](double v) { return v >= t && v > 0.0; }) / n;
-        success.push_back({{"threshold", t}, {"fraction", fraction}});
-        auc += fraction / 21.0;
-    }
-    for (double d : {0.2, 0.5, 1.0, 2.0})
-        precision[std::to_string(d).substr(0, 3) + "_m"] = std::count_if(l2s.begin(), l2s.end(), [&](double v) { return v <= d; }) / n;
-    auto eao = [&](const std::string& name) {
-        const SupervisedRun& run = supervised.at(name);
-        return expected_average_overlap(fragments_of(run.iou, run.initialised), interval.first, interval.second);
-    };
-    return {{"target", target},
-            {"frames", detections.size()},
-            {"mean_l2_m", l2_count ? nlohmann::json(l2_sum / l2_count) : nlohmann::json(nullptr)},
-            {"mean_iou", iou_sum["sensor_3d"] / n},
-            {"mean_iou_bev", iou_sum["sensor_bev"] / n},
-            {"frames_lost", lost},
-            {"failures", headline.failures},
-            {"eao", eao("sensor_3d")},
-            {"eao_bev", eao("sensor_bev")},
-            {"eao_interval", {interval.first, interval.second}},
-            {"point_box",
-             {{"mean_iou", iou_sum["points_3d"] / n},
-              {"mean_iou_bev", iou_sum["points_bev"] / n},
-              {"eao", eao("points_3d")},
-              {"eao_bev", eao("points_bev")},
-              {"failures", supervised.at("points_3d").failures}}},
-            {"success_auc", auc},
-            {"success", success},
-            {"precision", precision},
-            {"per_frame", per_frame}};
-}
-
 nlohmann::json dataset_record(const Sequence& s) {
     return {{"directory", std::filesystem::absolute(s.directory).lexically_normal().string()}, {"manifest_id", s.dataset_id}};
 }
@@ -280,19 +201,6 @@ nlohmann::json to_json(const Detection& d) {
     j.update({{"frame", d.frame}, {"time_s", d.time_s}, {"found", d.found}, {"predicted", d.predicted},
               {"sensor_box", box_json(d.sensor_box)}, {"points", d.points}, {"radius_m", d.radius_m}});
     return j;
-}
-
-Detection detection_from_json(const nlohmann::json& j) {
-    Detection d;
-    d.frame = j.at("frame").get<std::uint64_t>();
-    d.time_s = j.at("time_s").get<double>();
-    d.found = j.at("found").get<bool>();
-    d.predicted = j.at("predicted").get<bool>();
-    d.box = box_of(j);
-    d.sensor_box = box_of(j.at("sensor_box"));
-    d.points = j.at("points").get<std::size_t>();
-    d.radius_m = j.at("radius_m").get<double>();
-    return d;
 }
 
 nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
@@ -339,8 +247,10 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
                           {"detections", nlohmann::json::array()}};
     for (const auto& d : detect_sequence(s, config)) out["detections"].push_back(to_json(d));
     out["tracks"] = nlohmann::json::array();
-    for (const auto& frame : track_sequence(s, config)) {
+    const auto tracked = track_sequence(s, config);
+    for (std::size_t i = 0; i < tracked.size(); ++i) {
         nlohmann::json tracks = nlohmann::json::array();
+        const auto& frame = tracked[i];
         for (const TrackedObject& t : frame) {
             nlohmann::json j = box_json(t.box);
             j["track"] = t.track;
@@ -350,82 +260,10 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
             j["score"] = t.score;
             tracks.push_back(j);
         }
-        out["tracks"].push_back(tracks);
+        out["tracks"].push_back({{"frame", s.frame_index[i]}, {"objects", tracks}});
     }
-    if (target) {
-        // The supervised run EAO needs is only possible with ground truth; it is stored here so
-        // that evaluate_report scores exactly what this configuration did.
-        out["target"] = *target;
-        out["supervised"] = nlohmann::json::object();
-        for (const auto& [name, run] : supervised_runs(s, config, *target))
-            out["supervised"][name] = {{"iou", run.iou}, {"initialised", run.initialised}, {"failures", run.failures}};
-    }
+    if (target) out["target"] = *target;
     return out;
-}
-
-nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, const std::string& file) {
-    if (!report.is_object()) throw InputError(file, "(file)", "not a report of ladarsim detect");
-    check_same_dataset(report, file, s);
-    if (!report.contains("supervised") || !report.contains("target"))
-        throw InputError(file, "supervised", "missing: the dataset had no ground truth when detect ran");
-    try {
-        std::vector<Detection> detections;
-        for (const auto& j : report.at("detections")) detections.push_back(detection_from_json(j));
-        SupervisedRuns runs;
-        for (const auto& [name, box, kind] : scored_kinds()) {
-            const auto& j = report["supervised"].at(name);
-            SupervisedRun& run = runs[name];
-            run.iou = j.at("iou").get<std::vector<double>>();
-            run.initialised = j.at("initialised").get<std::vector<bool>>();
-            run.failures = j.at("failures").get<int>();
-            if (run.iou.size() != detections.size() || run.initialised.size() != detections.size())
-                throw InputError(file, "supervised." + name, "holds " + std::to_string(run.iou.size()) + " frames, the detections " +
-                                                                 std::to_string(detections.size()));
-        }
-        // Frames gone from the dataset since detect ran would be scored against the wrong ground truth.
-        if (detections.size() != s.frames.size())
-            throw InputError(file, "detections",
-                             "holds " + std::to_string(detections.size()) + " frames, the dataset " + s.directory.string() +
-                                 " has " + std::to_string(s.frames.size()) + ": run `ladarsim detect " + s.directory.string() +
-                                 "` again");
-        check_target(s, report["target"].get<std::uint32_t>(), s.directory / "ground_truth.json");
-        const auto interval = vot_length_interval({static_cast<int>(detections.size())});
-        nlohmann::json scores = evaluate(s, detections, runs, report["target"].get<std::uint32_t>(), interval);
-        scores["method"] = report.value("method", "");
-        // Every target: the tracks' sensor-aware box centres against every drone, bird and aircraft.
-        const auto& track_frames = report.at("tracks");
-        if (track_frames.size() != detections.size())
-            throw InputError(file, "tracks", "holds " + std::to_string(track_frames.size()) + " frames, the detections " +
-                                                 std::to_string(detections.size()));
-        std::vector<std::vector<TrackCentre>> hypotheses(track_frames.size());
-        for (std::size_t f = 0; f < track_frames.size(); ++f)
-            for (const auto& t : track_frames[f])
-                hypotheses[f].push_back(
-                    {t.at("track").get<std::uint32_t>(), vector_of(t.at("sensor_box").at("centre_m")), t.at("score").get<double>()});
-        const auto truth = tracking_truth(s);
-        constexpr double kGate_m = 2.0;
-        const ClearMot mot = clear_mot(truth, hypotheses, kGate_m);
-        auto number = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
-        nlohmann::json per_class = nlohmann::json::object();
-        for (const auto& [cls, c] : mot.per_class)
-            per_class[cls] = {{"objects", c.objects}, {"matches", c.matches}, {"misses", c.misses}, {"id_switches", c.id_switches},
-                              {"recall", c.objects ? nlohmann::json(double(c.matches) / c.objects) : nlohmann::json(nullptr)},
-                              {"motp_m", c.matches ? nlohmann::json(c.distance_sum_m / c.matches) : nlohmann::json(nullptr)}};
-        const CentreDistanceAp aps = centre_distance_aps(truth, hypotheses);
-        nlohmann::json ap = nlohmann::json::object();
-        for (std::size_t k = 0; k < aps.at.size(); ++k)
-            ap[std::to_string(CentreDistanceAp::kThresholds_m[k]).substr(0, 4) + "_m"] = number(aps.at[k]);
-        scores["mota"] = number(mot.mota());
-        scores["motp_m"] = number(mot.motp_m());
-        scores["id_switches"] = mot.all.id_switches;
-        scores["ap_centre"] = number(aps.mean);
-        scores["tracking"] = {{"gate_m", kGate_m},        {"objects", mot.all.objects},  {"matches", mot.all.matches},
-                              {"misses", mot.all.misses}, {"false_positives", mot.false_positives},
-                              {"ap_centre_at", ap},       {"per_class", per_class}};
-        return scores;
-    } catch (const nlohmann::json::exception& e) {
-        throw InputError(file, "detections", std::string("not a report of ladarsim detect: ") + e.what());
-    }
 }
 
 }  // namespace ladarsim::detect

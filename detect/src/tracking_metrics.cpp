@@ -144,7 +144,7 @@ ClearMot clear_mot(const std::vector<std::vector<TruthCentre>>& truth, const std
 }
 
 double centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth, const std::vector<std::vector<TrackCentre>>& tracks,
-                          double threshold_m, double min_recall, double min_precision) {
+                          double threshold_m, CentreDistance distance, double min_recall, double min_precision) {
     if (truth.size() != tracks.size()) throw std::invalid_argument("centre_distance_ap: truth and tracks cover different frame counts");
     std::size_t positives = 0;
     for (const auto& frame : truth) positives += frame.size();
@@ -168,7 +168,8 @@ double centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth, co
         std::size_t nearest = 0;
         for (std::size_t o = 0; o < truth[r.frame].size(); ++o) {
             if (matched[r.frame][o]) continue;
-            const double d = (truth[r.frame][o].centre - c).norm();
+            const Eigen::Vector3d offset = truth[r.frame][o].centre - c;
+            const double d = distance == CentreDistance::ground_plane ? offset.head<2>().norm() : offset.norm();
             if (d < best) {
                 best = d;
                 nearest = o;
@@ -200,10 +201,10 @@ double centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth, co
 }
 
 CentreDistanceAp centre_distance_aps(const std::vector<std::vector<TruthCentre>>& truth,
-                                     const std::vector<std::vector<TrackCentre>>& tracks) {
+                                     const std::vector<std::vector<TrackCentre>>& tracks, CentreDistance distance) {
     CentreDistanceAp ap;
     for (std::size_t k = 0; k < ap.at.size(); ++k) {
-        ap.at[k] = centre_distance_ap(truth, tracks, CentreDistanceAp::kThresholds_m[k]);
+        ap.at[k] = centre_distance_ap(truth, tracks, CentreDistanceAp::kThresholds_m[k], distance);
         ap.mean += ap.at[k] / static_cast<double>(ap.at.size());
     }
     return ap;

@@ -36,7 +36,8 @@ PYBIND11_MODULE(ladarsim, m) {
 render(scenario, ...)      frames one at a time, or a dataset directory with out=DIR
 Dataset(dir)               a rendered or recorded dataset, read lazily
 detect(dataset, ...)       Algorithm 1 over a dataset, as `ladarsim detect` reports it
-evaluate(dataset, report)  its scores, as `ladarsim eval --json` writes them
+evaluate(dataset, report)  the scores of its boxes, as `ladarsim eval --json` writes them
+benchmark(dataset, ...)    a detector run and scored with EAO, as `ladarsim benchmark --json`
 Sensor.preset(name)        a sensor, its document and derived quantities
 InputError                 bad input (a ValueError), naming the file, field and problem)";
     m.attr("__version__") = ladarsim::software_json().at("version").get<std::string>();

@@ -9,6 +9,12 @@ As KITTI readers do: velodyne points by np.fromfile(path, dtype=np.float32).resh
 as 15 whitespace-separated fields; a label's box from its corners as the devkit's compute_box_3d
 builds them (roty(ry) times the l/2, 0..-h, w/2 offsets, plus the location), taken back to the
 velodyne frame with inv(Tr_velo_to_cam) @ inv(R0_rect) from calib, as project_rect_to_velo does.
+Points in a box as OpenPCDet counts them (points_in_boxes: strictly inside each half extent).
+
+The exact box ladarsim_export.json keeps for each label must be ground truth's; the label's own
+box (docs/kitti.md, "Labels") must hold ground truth's box and every one of the object's returns,
+and be no larger than the tightest such box plus the documented margin, unless the export was
+made with --exact-boxes, whose labels are the exact boxes.
 """
 import glob
 import json
@@ -38,18 +44,19 @@ def read_calib(path):
     return calib
 
 
+def parse_label(line, where):
+    fields = line.split()
+    if len(fields) != 15:
+        fail(f"{where}: a label with {len(fields)} fields, not 15: {line!r}")
+        return None
+    v = [float(x) for x in fields[1:]]
+    return {"type": fields[0], "truncated": v[0], "occluded": int(fields[2]), "alpha": v[2],
+            "bbox": v[3:7], "h": v[7], "w": v[8], "l": v[9], "location": np.array(v[10:13]), "ry": v[13]}
+
+
 def read_labels(path):
-    labels = []
     with open(path) as f:
-        for line in f:
-            fields = line.split()
-            if len(fields) != 15:
-                fail(f"{path}: a label with {len(fields)} fields, not 15: {line!r}")
-                continue
-            v = [float(x) for x in fields[1:]]
-            labels.append({"type": fields[0], "truncated": v[0], "occluded": int(fields[2]), "alpha": v[2],
-                           "bbox": v[3:7], "h": v[7], "w": v[8], "l": v[9], "location": np.array(v[10:13]), "ry": v[13]})
-    return labels
+        return [label for label in (parse_label(line, path) for line in f) if label is not None]
 
 
 def velo_from_rect(calib):
@@ -124,46 +131,72 @@ def check_frame(n, pcd, points, truth, record, kitti_dir, reach_per_m):
 
     expected = [o for o in truth[entry["frame_index"]]
                 if o["class"] in ("drone", "bird", "plane") and np.any(points["object_id"] == o["id"])]
-    if len(labels) != len(expected):
-        fail(f"label_2/{stem}.txt: {len(labels)} labels, expected {len(expected)} ({[o['name'] for o in expected]})")
+    recorded = entry["labels"]
+    if [r["id"] for r in recorded] != [o["id"] for o in expected] or len(labels) != len(expected):
+        fail(f"label_2/{stem}.txt: {len(labels)} labels for objects {[r['id'] for r in recorded]}, expected "
+             f"{len(expected)} ({[o['name'] for o in expected]})")
+        return 0, 0
     checked_boxes = checked_returns = 0
-    for o in expected:
-        match = [i for i, b in enumerate(boxes) if np.linalg.norm(b.mean(axis=0) - o["box_sensor"]["centre_m"]) < 1e-4]
-        if not match:
-            fail(f"label_2/{stem}.txt: no box centred on {o['name']}'s ground-truth centre {o['box_sensor']['centre_m']}")
-            continue
-        label, corners = labels[match[0]], boxes[match[0]]
+    for o, label, corners, r in zip(expected, labels, boxes, recorded):
         what = f"label_2/{stem}.txt: {o['name']}"
-        if label["type"] != o["class"].capitalize():
-            fail(f"{what}: labelled {label['type']}")
-        if label["bbox"] != [-1, -1, -1, -1] or label["occluded"] != 3 or label["truncated"] != 0:
-            fail(f"{what}: no camera, yet bbox/occluded/truncated {label}")
-        loc = label["location"]
-        if abs(math.remainder(label["alpha"] - (label["ry"] - math.atan2(loc[0], loc[2])), 2 * math.pi)) > 1e-5:
-            fail(f"{what}: alpha {label['alpha']} is not ry - atan2(x, z)")
-        # The label box holds ground truth's box: every corner inside, and a corner on each face.
+        own = points["object_id"] == o["id"]
+        mine = xyz[own]
+        if r["returns"] != len(mine):
+            fail(f"{what}: ladarsim_export.json counts {r['returns']} returns, the PCD {len(mine)}")
+        exact = parse_label(r["exact_label"], f"ladarsim_export.json frame {stem}")
+        if exact is None:
+            continue
+        for box_label, box_what in ((label, what), (exact, what + " (exact box)")):
+            if box_label["type"] != o["class"].capitalize():
+                fail(f"{box_what}: labelled {box_label['type']}")
+            if box_label["bbox"] != [-1, -1, -1, -1] or box_label["occluded"] != 3 or box_label["truncated"] != 0:
+                fail(f"{box_what}: no camera, yet bbox/occluded/truncated {box_label}")
+            loc = box_label["location"]
+            if abs(math.remainder(box_label["alpha"] - (box_label["ry"] - math.atan2(loc[0], loc[2])), 2 * math.pi)) > 1e-5:
+                fail(f"{box_what}: alpha {box_label['alpha']} is not ry - atan2(x, z)")
+        # The exact box is ground truth's: every corner inside, and a corner on each face.
+        exact_corners = label_corners_velo(exact, to_velo)
         gt = truth_corners(o["box_sensor"])
-        local, half = local_coordinates(gt, corners)
+        if np.linalg.norm(exact_corners.mean(axis=0) - o["box_sensor"]["centre_m"]) > 1e-4:
+            fail(f"{what}: the exact box is not centred on ground truth's centre {o['box_sensor']['centre_m']}")
+        local, half = local_coordinates(gt, exact_corners)
         if np.any(np.abs(local) > half + 1e-4):
-            fail(f"{what}: a ground-truth corner lies outside the label box")
+            fail(f"{what}: a ground-truth corner lies outside the exact box")
         if np.any(np.min(half - np.abs(local), axis=0) > 1e-4):
-            fail(f"{what}: the label box is larger than ground truth's")
+            fail(f"{what}: the exact box is larger than ground truth's")
         # A box turned about the vertical only comes through unchanged: the same eight corners.
         upright = abs(quaternion_matrix(*o["box_sensor"]["orientation_wxyz"])[2, 2] - 1) < 1e-9
-        if upright and np.max(np.min(np.linalg.norm(gt[:, None] - corners[None], axis=2), axis=1)) > 1e-4:
+        if upright and np.max(np.min(np.linalg.norm(gt[:, None] - exact_corners[None], axis=2), axis=1)) > 1e-4:
             fail(f"{what}: a yaw-only box whose corners differ from ground truth's")
-        # Returns of a still object lie in its box, up to range noise and the footprint's reach: a
-        # return lies on its beam's axis, which may pass beside the object its footprint's rim
-        # meets. A drone moves during a scan.
+        # Returns of a still object lie in its exact box, up to range noise and the footprint's
+        # reach: a return lies on its beam's axis, which may pass beside the object its
+        # footprint's rim meets. A drone moves during a scan.
         if o["class"] != "drone":
-            own = points["object_id"] == o["id"]
-            mine = xyz[own]
             allowance = 0.05 + reach_per_m * points["range_m"][own]
-            local, half = local_coordinates(mine, corners)
+            local, half = local_coordinates(mine, exact_corners)
             outside = int(np.sum(np.any(np.abs(local) > half + allowance[:, None], axis=1)))
             if outside:
-                fail(f"{what}: {outside} of its {len(mine)} returns lie outside its box")
+                fail(f"{what}: {outside} of its {len(mine)} returns lie outside its exact box")
             checked_returns += len(mine)
+        if record["label_boxes"] == "exact":
+            if np.max(np.abs(corners - exact_corners)) > 1e-6:
+                fail(f"{what}: exported with exact boxes, yet its label is not the exact box")
+        else:
+            # The label holds ground truth's box and, strictly inside as OpenPCDet counts points,
+            # every return of the object; each face is within the margin of one of them.
+            local_gt, half = local_coordinates(gt, corners)
+            local_returns, _ = local_coordinates(mine.astype(np.float64), corners)
+            if np.any(np.abs(local_gt) > half + 1e-4):
+                fail(f"{what}: a ground-truth corner lies outside the label box")
+            inside = np.all(np.abs(local_returns) < half, axis=1)
+            if not np.all(inside):
+                fail(f"{what}: {int(np.sum(~inside))} of its {len(mine)} returns lie outside its label box"
+                     f"{' (none inside)' if not np.any(inside) else ''}")
+            held = np.vstack([local_gt, local_returns])
+            slack = np.maximum(np.min(half - held, axis=0), np.min(half + held, axis=0))
+            if np.any(slack > record["label_margin_m"] + 1e-4):
+                fail(f"{what}: the label box is {slack.max():.4f} m larger than the tightest box holding "
+                     f"ground truth's and the returns, beyond the margin {record['label_margin_m']} m")
         checked_boxes += 1
     return checked_boxes, checked_returns
 

@@ -19,14 +19,14 @@ python3 - "$work/scores.json" <<'PY' || fail "eval --json lacks a score: $(head 
 import json, sys
 s = json.load(open(sys.argv[1]))
 for scores in (s, s["point_box"]):
-    for key in ("eao", "eao_bev", "mean_iou", "mean_iou_bev"):
+    for key in ("mean_iou", "mean_iou_bev"):
         assert 0.0 <= scores[key] <= 1.0, key
 assert s["mean_l2_m"] is not None and all("iou_bev" in f and "points_iou" in f for f in s["per_frame"])
 # Every target: CLEAR MOT and centre-distance AP, and the counts they come from.
 t = s["tracking"]
 assert t["matches"] + t["misses"] == t["objects"] > 0
 assert abs(s["mota"] - (1 - (t["misses"] + t["false_positives"] + s["id_switches"]) / t["objects"])) < 1e-9
-assert s["motp_m"] >= 0 and 0 <= s["ap_centre"] <= 1 and "drone" in t["per_class"]
+assert s["motp_m"] >= 0 and 0 <= s["ap_centre"] <= 1 and 0 <= s["ap_centre_3d"] <= 1 and "drone" in t["per_class"]
 PY
 "$bin" eval "$work/b" --detections "$work/a/detections-vrbnn.json" >/dev/null 2>"$work/stderr"
 rc=$?

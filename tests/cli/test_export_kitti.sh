@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # export-kitti end to end: a rendered scenario (a yawed "plane", a pitched and rolled "bird", an
 # approaching drone, a drone out of reach, a building) exported and read back by an independent
-# KITTI reader (check_kitti_export.py); bad input refused with one line and exit 2; a user's
-# files never replaced.
+# KITTI reader (check_kitti_export.py), with label boxes holding the objects' returns or, on
+# request, ground truth's exact boxes; the default scenario and multi_target's labels hold their
+# returns; bad input refused with one line and exit 2; a user's files never replaced.
 # Usage: test_export_kitti.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
 models="$(realpath "$src")/assets/models"
@@ -34,6 +35,19 @@ grep -q "^exported 2 frames" "$work/stdout" || fail "no summary line: $(cat "$wo
 grep -q "^export, frame 2/2" "$work/stderr" || fail "no progress lines: $(cat "$work/stderr")"
 /usr/bin/python3 "$src/tests/cli/check_kitti_export.py" "$work/d" "$work/k" || fail "the export does not read back as the dataset"
 [ ! -e "$work/k.partial" ] && [ ! -e "$work/k.old" ] || fail "staging directories left behind"
+"$bin" export-kitti "$work/d" --out "$work/exact" --exact-boxes >/dev/null 2>&1 || fail "export --exact-boxes failed"
+/usr/bin/python3 "$src/tests/cli/check_kitti_export.py" "$work/d" "$work/exact" >"$work/stdout" ||
+  fail "the export with exact boxes does not read back as the dataset: $(cat "$work/stdout")"
+
+# A drone a kilometre away and a field of drones, birds and an aircraft (issue #33): every label
+# holds its object's returns, which lie on beam axes up to half a footprint beside the object.
+for scenario in default multi_target; do
+  "$bin" render "$src/assets/scenarios/$scenario.json" --out "$work/$scenario" --frames 3 --quiet >/dev/null ||
+    { fail "$scenario did not render"; continue; }
+  "$bin" export-kitti "$work/$scenario" --out "$work/$scenario-kitti" >/dev/null 2>&1 || fail "export of $scenario failed"
+  /usr/bin/python3 "$src/tests/cli/check_kitti_export.py" "$work/$scenario" "$work/$scenario-kitti" >"$work/stdout" ||
+    fail "$scenario's export: $(cat "$work/stdout")"
+done
 
 # Exported again onto itself: the user's notes beside it are kept; a file of the user's inside
 # training/ (camera images added later) is refused before anything is written.

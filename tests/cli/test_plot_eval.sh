@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# scripts/plot_eval.py: with no detections the L2 panel says so (no axis about 0 m), and the
-# supervised run's re-initialisations (IoU 1 by construction) do not squash the real IoU curve.
+# scripts/plot_eval.py: with no detections the L2 panel says so (no axis about 0 m), the
+# supervised run's re-initialisations (IoU 1 by construction) do not squash the real IoU curve,
+# and eval's scores, which have no supervised run, plot without one.
 # Usage: test_plot_eval.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
 py=/usr/bin/python3
@@ -31,6 +32,11 @@ fig = plot_eval.draw(e)
 top = fig.axes[1].get_ylim()[1]
 if top > 0.5: bad.append(f"the IoU axis reaches {top}: the resets squash the real curve")
 json.dump(e, open(sys.argv[2] + "/eval.json", "w"))
+# eval's scores of a file: no supervised run, nothing of one drawn.
+del e["eao"], e["failures"]
+for f in e["per_frame"]: del f["supervised_iou"], f["initialised"]
+fig = plot_eval.draw(e)
+if len(fig.axes[1].lines) != 1: bad.append(f"without a supervised run the IoU panel draws {len(fig.axes[1].lines)} curves")
 if bad: print("\n".join(bad)); sys.exit(1)
 PY
 $py "$src/scripts/plot_eval.py" "$work/eval.json" "$work/eval.png" || fail "plot_eval.py failed"

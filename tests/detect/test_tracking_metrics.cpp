@@ -80,3 +80,18 @@ TEST_CASE("centre-distance AP as nuScenes computes it, on a ranked list worked b
     CHECK(aps.at[0] == centre_distance_ap(truth, tracks, 0.25));
     CHECK(aps.mean == Approx((centre_distance_ap(truth, tracks, 0.25) + 3 * centre_distance_ap(truth, tracks, 0.5)) / 4));
 }
+
+TEST_CASE("centre-distance AP measures on the ground plane as nuScenes does, and in 3-D on request", "[tracking_metrics]") {
+    // The ranked list above with the 0.7 hypothesis 0.3 m beside B and 1.5 m above it: on the
+    // ground plane 0.3 m off (a hit within 0.5 m, as above), in 3-D sqrt(0.09 + 2.25) = 1.53 m
+    // (a false positive within 0.5 m: precision 1, 1/2, 1/3 as at 0.25 m above; a hit within 2 m).
+    const std::vector<std::vector<TruthCentre>> truth = {{object(1, 0), object(2, 10)}};
+    const std::vector<std::vector<TrackCentre>> tracks = {
+        {track(7, 0.1, 0.9), track(8, 30, 0.8), {9, Eigen::Vector3d(10, 0.3, 1.5), 0.7}}};
+    const double hit = 59.75 / 90.0 / 0.9, missed = (39 * 0.9 + (1.0 / 3.0 - 0.1)) / 90.0 / 0.9;
+    CHECK(centre_distance_ap(truth, tracks, 0.5) == Approx(hit));  // nuScenes' is the default
+    CHECK(centre_distance_ap(truth, tracks, 0.5, CentreDistance::ground_plane) == Approx(hit));
+    CHECK(centre_distance_ap(truth, tracks, 0.5, CentreDistance::three_d) == Approx(missed));
+    CHECK(centre_distance_ap(truth, tracks, 2.0, CentreDistance::three_d) == Approx(hit));
+    CHECK(centre_distance_aps(truth, tracks, CentreDistance::three_d).at[1] == Approx(missed));
+}

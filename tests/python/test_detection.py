@@ -1,5 +1,5 @@
-"""ladarsim.detect and ladarsim.evaluate: the same reports as `ladarsim detect` and
-`ladarsim eval --json`."""
+"""ladarsim.detect, ladarsim.evaluate and ladarsim.benchmark: the same reports as `ladarsim detect`,
+`ladarsim eval --json` and `ladarsim benchmark --json`."""
 import pytest
 
 import ladarsim
@@ -26,7 +26,14 @@ def test_evaluate_scores_as_the_command_line_does(cli_small, cli_reports):
     detections, scores, detections_file = cli_reports
     assert ladarsim.evaluate(cli_small, detections) == scores
     assert ladarsim.evaluate(ladarsim.Dataset(cli_small), detections_file) == scores
-    assert scores["frames"] == 3 and "eao" in scores and "eao_bev" in scores and "eao_bev" in scores["point_box"]
+    assert scores["frames"] == 3 and "mean_iou" in scores and "mean_iou_bev" in scores["point_box"]
+
+
+def test_benchmark_scores_as_the_command_line_does(cli_small, tmp_path):
+    run_cli("benchmark", cli_small, "--method", "vrbnn", "--lambda", 180, "--min-box", 0.3, "--json", tmp_path / "scores.json")
+    scores = ladarsim.benchmark(cli_small, method="vrbnn", lambda_=180, min_box_m=0.3)
+    assert scores == read_json(tmp_path / "scores.json")
+    assert "eao" in scores["measures"] and 0 <= scores["eao"] <= 1 and "eao_bev" in scores["point_box"]
 
 
 def test_unknown_or_mistyped_options_are_input_errors(cli_small):
@@ -37,5 +44,5 @@ def test_unknown_or_mistyped_options_are_input_errors(cli_small):
     with pytest.raises(ladarsim.InputError, match=r"dataset: missing"):
         ladarsim.evaluate(cli_small, {"detections": []})
     report = ladarsim.detect(cli_small)
-    with pytest.raises(ladarsim.InputError, match=r"supervised"):
+    with pytest.raises(ladarsim.InputError, match=r"detections: no detection for frame 0"):
         ladarsim.evaluate(cli_small, {"dataset": report["dataset"], "detections": []})

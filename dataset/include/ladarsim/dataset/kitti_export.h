@@ -3,7 +3,8 @@
 //   training/velodyne/NNNNNN.bin  float32 little-endian x y z intensity per return
 //   training/label_2/NNNNNN.txt   one 15-field line per labelled object with returns in the frame
 //   training/calib/NNNNNN.txt     P0..P3, R0_rect, Tr_velo_to_cam, Tr_imu_to_velo (kitti_calib_text)
-//   ladarsim_export.json          where it came from, frame numbers, class map, intensity scale
+//   ladarsim_export.json          where it came from, frame numbers, class map, intensity scale,
+//                                 each label's exact ground-truth box
 // No image_2: there is no camera. docs/kitti.md says what each field holds and why.
 //
 // Frames: ladarsim's sensor frame (x forward, y left, z up, the sensor at the origin) is KITTI's
@@ -44,6 +45,20 @@ struct KittiBox {
 /// when the nose points straight up or down).
 KittiBox kitti_box(const OrientedBox& box_sensor);
 
+/// How far each face of a label box lies beyond the outermost return it holds, m: above the
+/// float32 rounding of a return's coordinates at several kilometres (0.5 mm at 4 km) and the
+/// labels' six decimals, so that readers counting points strictly inside a box (OpenPCDet's
+/// points_in_boxes) count every one.
+inline constexpr double kKittiLabelMargin_m = 0.01;
+
+/// The label box of an object with `returns` (its returns in the sensor frame): kitti_box's,
+/// grown about the same heading to the tightest box holding both ground truth's box and every
+/// return kKittiLabelMargin_m inside its faces, as an annotator draws a box around what the
+/// sensor saw. A return lies on its beam's axis, up to half a footprint beside the object whose
+/// rim the footprint met, so ground truth's own box holds none of a small drone's returns.
+/// Without returns it is kitti_box's.
+KittiBox kitti_label_box(const OrientedBox& box_sensor, const std::vector<Eigen::Vector3d>& returns);
+
 /// The label_2 type of a ladarsim class: the targets keep their own names ("drone" -> "Drone",
 /// "bird" -> "Bird", "plane" -> "Plane"); the scene (building, terrain, tree, cloud, background)
 /// is not labelled (std::nullopt), as KITTI leaves buildings and vegetation unlabelled.
@@ -60,6 +75,12 @@ const std::string& kitti_calib_text();
 /// The export's directory layout: marker ladarsim_export.json, own entries training/ (holding
 /// only velodyne/, label_2/ and calib/ with NNNNNN files) and the marker.
 const OutputLayout& kitti_layout();
+
+struct KittiExportOptions {
+    /// Label boxes are ground truth's exactly (kitti_box), not grown to hold the returns
+    /// (kitti_label_box). ladarsim_export.json keeps the exact box of every label either way.
+    bool exact_boxes = false;
+};
 
 struct KittiExportProgress {
     std::function<void(int done, int total)> intensity_scanned;  ///< first pass, per frame read
@@ -82,6 +103,6 @@ struct KittiExportSummary {
 /// InputError naming the file and the problem for a missing directory, manifest or frames, a
 /// malformed file, or ground truth without one of the frames.
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                                const KittiExportProgress& progress = {});
+                                const KittiExportOptions& options = {}, const KittiExportProgress& progress = {});
 
 }  // namespace ladarsim

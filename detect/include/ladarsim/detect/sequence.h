@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -65,6 +66,8 @@ enum class ScoredBox { points, sensor_aware };
 enum class Overlap { volume, bev };
 /// The IoU of a detection's box with the truth, 0 when it has none.
 double overlap(const Detection& d, ScoredBox box, Overlap kind, const OrientedBox& truth);
+/// The four scored kinds by name: "points_3d", "points_bev", "sensor_3d", "sensor_bev".
+const std::vector<std::tuple<std::string, ScoredBox, Overlap>>& scored_kinds();
 
 /// VOT's supervised protocol for EAO: run, and after a failure (IoU 0) skip 5 frames and
 /// re-initialise on the ground truth. Per frame: IoU and whether the tracker was (re-)initialised.
@@ -83,13 +86,6 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
 using SupervisedRuns = std::map<std::string, SupervisedRun>;
 SupervisedRuns supervised_runs(const Sequence& s, const DetectorConfig& config, std::uint32_t target);
 
-/// Scores: per frame L2 and IoUs; mean L2 (frames with a box), mean IoU (all frames) and EAO over
-/// `interval` (from vot_length_interval) of the sensor-aware box, in 3-D and in bird's-eye view,
-/// the same of the box around the points under "point_box", failures, success and precision
-/// curves (of the sensor-aware box in 3-D).
-nlohmann::json evaluate(const Sequence& s, const std::vector<Detection>& detections, const SupervisedRuns& supervised,
-                        std::uint32_t target, std::pair<int, int> interval);
-
 /// What a detections file records of the dataset it was computed on: its directory and manifest id.
 nlohmann::json dataset_record(const Sequence& s);
 /// Throws InputError(detections_file, "dataset", ...) naming both datasets when `detections` (a
@@ -97,8 +93,9 @@ nlohmann::json dataset_record(const Sequence& s);
 /// say which.
 void check_same_dataset(const nlohmann::json& detections, const std::string& detections_file, const Sequence& s);
 
+/// A detection as detections files hold it (scoring.h reads it back): {"frame", "time_s", "found",
+/// "predicted", "centre_m", "size_m", "sensor_box", "points", "radius_m"}.
 nlohmann::json to_json(const Detection& d);
-Detection detection_from_json(const nlohmann::json& j);
 
 /// The settings a detection run records ("config" of its report): radius_m, lambda, bias_m,
 /// resolution_m, range_tolerance_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m,
@@ -111,20 +108,12 @@ nlohmann::json to_json(const DetectorConfig& config, const SensorGeometry& senso
 /// problem) for an unknown key or a value of the wrong type or range.
 DetectorConfig read_detector_config(const nlohmann::json& options, const std::string& file);
 
-/// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "detections",
-/// "tracks" (track_sequence's per frame: track, centre_m, size_m, sensor_box, points, predicted,
-/// score)}
-/// and, when the ground truth holds `target` (default: default_target), "target" and
-/// "supervised" (the runs of supervised_runs by name, each "iou", "initialised", "failures"), which
-/// evaluate_report scores.
+/// Algorithm 1 over a dataset as `ladarsim detect` reports it: {"method", "config", "dataset",
+/// "detections" (to_json's, per frame), "tracks" (track_sequence's, per frame: {"frame", "objects":
+/// [{track, centre_m, size_m, sensor_box, points, predicted, score}]})} and, when the ground truth
+/// holds `target` (default: default_target), "target". Scores come from scoring.h: of the boxes
+/// (evaluate_report), or with the tracker in the loop (benchmark_report).
 nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
                                 std::optional<std::uint32_t> target = std::nullopt);
-
-/// The scores of a detection report (as detection_report writes it) as `ladarsim eval` reports
-/// them: evaluate's over VOT's interval of sequence lengths, plus "method", and the tracks' CLEAR
-/// MOT (2 m gate) and centre-distance AP against tracking_truth: "mota", "motp_m", "id_switches",
-/// "ap_centre", and under "tracking" the counts and per class. Throws InputError
-/// naming `file` for a report without a supervised run (its dataset had no ground truth).
-nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, const std::string& file);
 
 }  // namespace ladarsim::detect

@@ -49,14 +49,19 @@ struct ClearMot {
 ClearMot clear_mot(const std::vector<std::vector<TruthCentre>>& truth, const std::vector<std::vector<TrackCentre>>& tracks,
                    double threshold_m);
 
+/// How far a hypothesis' centre is from an object's: on the ground plane, as nuScenes measures it
+/// (`center_distance`: x and y of centres given in a frame whose z is up), or in 3-D.
+enum class CentreDistance { ground_plane, three_d };
+
 /// nuScenes' average precision at one centre-distance threshold: hypotheses of the whole
 /// sequence ranked by score, each matched to the nearest unmatched object of its frame when
-/// nearer than `threshold_m` (else a false positive); precision against recall sampled at 101
+/// nearer than `threshold_m` by `distance` (else a false positive); precision against recall sampled at 101
 /// recalls by linear interpolation (0 beyond the highest recall), those above `min_recall`
 /// (0.1) kept, less `min_precision` (0.1) and clipped at 0, averaged and divided by
 /// 1 - min_precision. NaN without ground truth.
 double centre_distance_ap(const std::vector<std::vector<TruthCentre>>& truth, const std::vector<std::vector<TrackCentre>>& tracks,
-                          double threshold_m, double min_recall = 0.1, double min_precision = 0.1);
+                          double threshold_m, CentreDistance distance = CentreDistance::ground_plane, double min_recall = 0.1,
+                          double min_precision = 0.1);
 
 /// centre_distance_ap at 0.25, 0.5, 1 and 2 m (nuScenes takes 0.5-4 m for cars; a drone is
 /// 0.3 m across), and their mean.
@@ -66,7 +71,8 @@ struct CentreDistanceAp {
     double mean = 0.0;
 };
 CentreDistanceAp centre_distance_aps(const std::vector<std::vector<TruthCentre>>& truth,
-                                     const std::vector<std::vector<TrackCentre>>& tracks);
+                                     const std::vector<std::vector<TrackCentre>>& tracks,
+                                     CentreDistance distance = CentreDistance::ground_plane);
 
 /// Least-total-cost assignment of rows to columns (Hungarian, O(n^3)) of a rows x columns matrix;
 /// returns for each row its column, or -1 (more rows than columns).
