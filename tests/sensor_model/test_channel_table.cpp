@@ -7,6 +7,7 @@
 #include "ladarsim/core/units.h"
 
 using namespace ladarsim::sensor_model;
+using ladarsim::kDeg;
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include "ladarsim/core/units.h"
 
 using namespace ladarsim::sensor_model;
+using ladarsim::kDeg;
 using ladarsim::test::paper_raster;
 
 namespace {
