@@ -45,6 +45,13 @@ Points joined(Points a, const Points& b) {
     return a;
 }
 
+/// A still cloud's clumps beside the drone: four, 1.5-6 m from it, each 8 beams climbing 0.12 m
+/// a beam (outlier removal keeps the inner 6, 0.6 m deep).
+Points with_cloud_clumps(Points frame) {
+    for (int c = 1; c <= 4; ++c) frame = joined(frame, backscatter(650.0 + c, -c * 40 * kPitchAz, c * kPitchEl, 8, 0.12));
+    return frame;
+}
+
 }  // namespace
 
 TEST_CASE("clutter: a drone's returns agree in range, a cloud's clump climbing 0.12 m a beam does not", "[detect][clutter]") {
@@ -99,11 +106,7 @@ TEST_CASE("clutter: tracking every target, a cloud's clumps beside a drone make 
     MultiTargetTracker tracker(config, kPaperSensor, {});
     for (int k = 0; k < 10; ++k) {
         const double t = 0.05 * k, range = 660.0 - 25.0 * t;
-        Points frame = drone(range, 0.0, 0.0);
-        // Four clumps of a cloud 1.5-6 m beside the drone, in the same place every frame (a still
-        // cloud), each 8 beams climbing 0.12 m a beam: outlier removal keeps the inner 6, 0.6 m deep.
-        for (int c = 1; c <= 4; ++c) frame = joined(frame, backscatter(650.0 + c, -c * 40 * kPitchAz, c * kPitchEl, 8, 0.12));
-        const auto tracks = tracker.process(t, frame);
+        const auto tracks = tracker.process(t, with_cloud_clumps(drone(range, 0.0, 0.0)));
         INFO("frame " << k);
         if (k == 0) continue;  // a track is confirmed by its second cluster
         REQUIRE(tracks.size() == 1);
@@ -113,10 +116,6 @@ TEST_CASE("clutter: tracking every target, a cloud's clumps beside a drone make 
     config.range_coherence_m = 0.0;
     MultiTargetTracker untested(config, kPaperSensor, {});
     std::size_t tracks = 0;
-    for (int k = 0; k < 3; ++k) {
-        Points frame = drone(660.0 - 1.25 * k, 0.0, 0.0);
-        for (int c = 1; c <= 4; ++c) frame = joined(frame, backscatter(650.0 + c, -c * 40 * kPitchAz, c * kPitchEl, 8, 0.12));
-        tracks = untested.process(0.05 * k, frame).size();
-    }
+    for (int k = 0; k < 3; ++k) tracks = untested.process(0.05 * k, with_cloud_clumps(drone(660.0 - 1.25 * k, 0.0, 0.0))).size();
     CHECK(tracks == 5);
 }
