@@ -27,6 +27,12 @@ void DetectorOptions::add(CLI::App& command) {
     command.add_option("--min-box", detector.min_box_m, "Smallest box extent per axis, m (0: the cluster's own)")
         ->check(positive_number(true))
         ->capture_default_str();
+    command.add_option("--range-coherence", detector.range_coherence_m,
+                       "Clutter from clouds and fog: a small hard target's returns agree in range within this, a volume's "
+                       "backscatter does not (the cued tracker takes clusters' cores within twice this; every target's "
+                       "tracker keeps clusters with 90 % of their returns within this of their median), m (0: off)")
+        ->check(positive_number(true))
+        ->capture_default_str();
     command.add_option("--target-size", target_size,
                        "The sensor-aware box's size where the returns cannot resolve it, m, along the sensor's x y z "
                        "(a small quadcopter's; scored beside the box around the points)")

@@ -98,4 +98,54 @@ std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max
     return clusters;
 }
 
+std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double tolerance_m, std::size_t min_points) {
+    std::vector<Cluster> cores;
+    std::vector<std::pair<double, std::size_t>> ranges;
+    for (const Cluster& c : clusters) {
+        ranges.clear();
+        for (std::size_t i = 0; i < c.points.size(); ++i) ranges.emplace_back(c.points[i].cast<double>().norm(), i);
+        std::sort(ranges.begin(), ranges.end());
+        // The window [ranges[first], ranges[first] + 2 tolerance] holding the most returns (the
+        // first such, so the result does not depend on anything but the points).
+        std::size_t best_first = 0, best_count = 0;
+        for (std::size_t first = 0, end = 0; first < ranges.size(); ++first) {
+            end = std::max(end, first);
+            while (end < ranges.size() && ranges[end].first <= ranges[first].first + 2.0 * tolerance_m) ++end;
+            if (end - first > best_count) {
+                best_count = end - first;
+                best_first = first;
+            }
+        }
+        if (best_count < min_points) continue;
+        Cluster core;
+        if (best_count == c.points.size()) {
+            core = c;
+        } else {
+            // In the cluster's own order, so that cores of unchanged clusters are unchanged.
+            std::vector<std::size_t> kept;
+            for (std::size_t k = best_first; k < best_first + best_count; ++k) kept.push_back(ranges[k].second);
+            std::sort(kept.begin(), kept.end());
+            for (std::size_t i : kept) core.points.push_back(c.points[i]);
+            core.box = bounding_box(core.points);
+        }
+        cores.push_back(std::move(core));
+    }
+    return cores;
+}
+
+std::vector<Cluster> range_coherent(std::vector<Cluster> clusters, double tolerance_m, double min_fraction) {
+    std::erase_if(clusters, [&](const Cluster& c) {
+        if (c.points.empty()) return true;
+        std::vector<double> ranges;
+        ranges.reserve(c.points.size());
+        for (const auto& p : c.points) ranges.push_back(p.cast<double>().norm());
+        const auto middle = ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2);
+        std::nth_element(ranges.begin(), middle, ranges.end());
+        const double median = *middle;
+        const auto agreeing = std::count_if(ranges.begin(), ranges.end(), [&](double r) { return std::abs(r - median) <= tolerance_m; });
+        return static_cast<double>(agreeing) < min_fraction * static_cast<double>(ranges.size());
+    });
+    return clusters;
+}
+
 }  // namespace ladarsim::detect

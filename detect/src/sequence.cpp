@@ -210,6 +210,7 @@ nlohmann::json to_json(const DetectorConfig& c, const SensorGeometry& sensor) {
             {"min_neighbours", c.min_neighbours}, {"max_diagonal_m", c.max_diagonal_m},
             {"max_speed_mps", c.max_speed_mps},   {"min_box_m", c.min_box_m},
             {"max_object_diagonal_m", c.max_object_diagonal_m},
+            {"range_coherence_m", c.range_coherence_m},   {"coherent_fraction", c.coherent_fraction},
             {"target_size_m", vector_json(c.target_size_m)}};
 }
 
@@ -228,6 +229,8 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
     c.max_speed_mps = f.number("max_speed_mps", 0.0, kLarge, c.max_speed_mps);
     c.min_box_m = f.number("min_box_m", 0.0, kLarge, c.min_box_m);
     c.max_object_diagonal_m = f.number("max_object_diagonal_m", 0.0, kLarge, c.max_object_diagonal_m);
+    c.range_coherence_m = f.number("range_coherence_m", 0.0, kLarge, c.range_coherence_m);
+    c.coherent_fraction = f.number("coherent_fraction", 0.0, 1.0, c.coherent_fraction);
     if (f.has("target_size_m")) {
         c.target_size_m = f.vec3("target_size_m");
         if (!(c.target_size_m.array() > 0.0).all() || !c.target_size_m.allFinite())

@@ -143,9 +143,13 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
 
     const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
     const double divergence_rad = sensor_.divergence_mrad * kMrad;
+    const auto min_points = static_cast<std::size_t>(config_.min_neighbours) + 1;
+    std::vector<Cluster> clusters = rbnn(kept, d.radius_m);
+    // Clutter: a cloud's returns chained to the target are cut away, and the tracker takes the
+    // core nearest its prediction.
+    if (config_.range_coherence_m > 0.0) clusters = coherent_cores(clusters, config_.range_coherence_m, min_points);
     std::vector<Cluster> candidates =
-        plausible_targets(rbnn(kept, d.radius_m), config_.max_diagonal_m, config_.footprint_divergences * divergence_rad,
-                          static_cast<std::size_t>(config_.min_neighbours) + 1);
+        plausible_targets(std::move(clusters), config_.max_diagonal_m, config_.footprint_divergences * divergence_rad, min_points);
 
     // The candidate: nearest the expected position when there is one, else nearest the boresight
     // (the radar cue put the target there), else the largest.

@@ -101,8 +101,8 @@ void bind_detection(py::module_& m) {
 the report `ladarsim detect` writes: {"method", "config", "dataset", "detections", "tracks", and
 with ground truth "target"}. method: "rbnn", "vrbnn" or "kalman"; options: radius_m, lambda (or
 lambda_), bias_m, resolution_m, range_tolerance_m, min_neighbours, max_diagonal_m, max_speed_mps,
-min_box_m, max_object_diagonal_m, target_size_m (the sensor-aware box's size prior, [x, y, z]),
-and target (the ground-truth id to
+min_box_m, max_object_diagonal_m, range_coherence_m, coherent_fraction (clutter rejection),
+target_size_m (the sensor-aware box's size prior, [x, y, z]), and target (the ground-truth id to
 score; default the first drone). Unknown options raise InputError.)");
     m.def("evaluate", &evaluate_detections, py::arg("dataset"), py::arg("detections"),
           R"(Score the boxes of a detection report (the dict detect() returns, any detector's in its format,

@@ -43,4 +43,18 @@ Points remove_outliers(const Points& points, double radius_m, int min_neighbours
 std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max_diagonal_m, double beam_spread_rad,
                                        std::size_t min_points);
 
+/// Clutter from clouds and fog. A footprint mixes a small target's facets into one echo, so its
+/// returns share a range to a few centimetres whatever their spread across the line of sight; a
+/// volume's backscatter comes from every depth along every beam crossing it, and the clumps of it
+/// that clustering finds spread in range as much as across. Keeps the clusters with at least
+/// `min_fraction` of their returns within `tolerance_m` of their median range (ranges from the
+/// sensor origin).
+std::vector<Cluster> range_coherent(std::vector<Cluster> clusters, double tolerance_m, double min_fraction);
+
+/// Each cluster cut down to its coherent core: the most returns whose ranges lie within a window
+/// of 2 x `tolerance_m` (a volume's returns that clustering chained to a target fall away), kept
+/// where it holds `min_points` or more. A tracker that knows where its target should be takes the
+/// core nearest that place: a clump of the volume, or the target freed of it.
+std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double tolerance_m, std::size_t min_points);
+
 }  // namespace ladarsim::detect

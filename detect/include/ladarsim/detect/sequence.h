@@ -99,7 +99,7 @@ nlohmann::json to_json(const Detection& d);
 
 /// The settings a detection run records ("config" of its report): radius_m, lambda, bias_m,
 /// resolution_m, range_tolerance_m, min_neighbours, max_diagonal_m, max_speed_mps, min_box_m,
-/// max_object_diagonal_m, target_size_m.
+/// max_object_diagonal_m, range_coherence_m, coherent_fraction, target_size_m.
 /// `config` as a detection report records it, its lambda resolved for `sensor` (default_lambda).
 nlohmann::json to_json(const DetectorConfig& config, const SensorGeometry& sensor);
 

@@ -1,0 +1,122 @@
+// Clutter from clouds and fog beside a drone, on closed-form returns: a drone's returns share one
+// range across neighbouring beams; a cloud's backscatter climbs in range from beam to beam.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "ladarsim/core/units.h"
+#include "ladarsim/detect/clustering.h"
+#include "ladarsim/detect/multi_target.h"
+#include "ladarsim/detect/tracker.h"
+
+using namespace ladarsim::detect;
+using ladarsim::SensorGeometry;
+
+namespace {
+
+/// The paper's raster: 150 x 20 beams over 0.5 x 0.5 deg, 0.62 mrad beams.
+const SensorGeometry kPaperSensor{
+    .beams_az = 150, .beams_el = 20, .field_az_deg = 0.5, .field_el_deg = 0.5, .divergence_mrad = 0.62};
+/// Its beam pitches, radians.
+constexpr double kPitchAz = 0.5 * ladarsim::kDeg / 150.0, kPitchEl = 0.5 * ladarsim::kDeg / 20.0;
+
+Eigen::Vector3f along(double range, double az, double el) {
+    return (range * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))).cast<float>();
+}
+
+/// A drone's returns: 8 neighbouring beams on each of 2 lines, every one at `range`, the first
+/// beam at (az, el).
+Points drone(double range, double az, double el) {
+    Points p;
+    for (int row = 0; row < 2; ++row)
+        for (int column = 0; column < 8; ++column) p.push_back(along(range, az + column * kPitchAz, el + row * kPitchEl));
+    return p;
+}
+
+/// A cloud's returns along one line: `n` neighbouring beams from (az, el), each `step` m farther
+/// than the last, from `range`.
+Points backscatter(double range, double az, double el, int n, double step) {
+    Points p;
+    for (int k = 0; k < n; ++k) p.push_back(along(range + step * k, az + k * kPitchAz, el));
+    return p;
+}
+
+Points joined(Points a, const Points& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+/// A still cloud's clumps beside the drone: four, 1.5-6 m from it, each 8 beams climbing 0.12 m
+/// a beam (outlier removal keeps the inner 6, 0.6 m deep).
+Points with_cloud_clumps(Points frame) {
+    for (int c = 1; c <= 4; ++c) frame = joined(frame, backscatter(650.0 + c, -c * 40 * kPitchAz, c * kPitchEl, 8, 0.12));
+    return frame;
+}
+
+}  // namespace
+
+TEST_CASE("clutter: a drone's returns agree in range, a cloud's clump climbing 0.12 m a beam does not", "[detect][clutter]") {
+    const double radius = vrbnn_radius_m(180.0, kPaperSensor, 650.0, 0.01);
+    const std::vector<Cluster> target = rbnn(drone(650.0, 0.0, 0.0), radius);
+    const std::vector<Cluster> clump = rbnn(backscatter(650.0, 0.0, 0.0, 8, 0.12), radius);
+    REQUIRE(target.size() == 1);
+    REQUIRE(clump.size() == 1);  // 0.126 m between neighbours: one cluster, 0.84 m deep
+    CHECK(range_coherent(target, 0.1, 0.9).size() == 1);
+    CHECK(range_coherent(clump, 0.1, 0.9).empty());
+    // Of the clump's 8 returns, only the median one lies within 0.1 m of the median range.
+    CHECK(range_coherent(clump, 0.1, 1.0 / 8.0).size() == 1);
+    CHECK(range_coherent(clump, 0.1, 2.0 / 8.0).empty());
+}
+
+TEST_CASE("clutter: a coherent core frees a drone from the cloud returns chained to it", "[detect][clutter]") {
+    // The drone at 650 m; from its last beam a cloud's returns climb 2.9 m behind it, 0.09 m a
+    // beam (0.098 m apart: one cluster with the drone, 2.9 m deep).
+    const double radius = vrbnn_radius_m(180.0, kPaperSensor, 650.0, 0.01);
+    const Points target = drone(650.0, 0.0, 0.0);
+    const Points chained = joined(target, backscatter(650.25, 8 * kPitchAz, 0.0, 30, 0.09));
+    const std::vector<Cluster> clusters = rbnn(chained, radius);
+    REQUIRE(clusters.size() == 1);
+    const std::vector<Cluster> cores = coherent_cores(clusters, 0.1, 4);
+    REQUIRE(cores.size() == 1);
+    CHECK(cores[0].points == target);
+    CHECK((cores[0].box.centre - bounding_box(target).centre).norm() < 1e-9);
+    // Every 0.2 m window of the chain alone holds 3 of its returns: fewer than 4, no core.
+    CHECK(coherent_cores(rbnn(backscatter(650.25, 0.0, 0.0, 30, 0.09), radius), 0.1, 4).empty());
+}
+
+TEST_CASE("clutter: the cued tracker keeps a drone flying into a cloud whose returns chain to it", "[detect][clutter]") {
+    DetectorConfig config;
+    config.lambda = 180.0;
+    TargetTracker tracker(config, kPaperSensor, {});
+    for (int k = 0; k < 12; ++k) {
+        const double t = 0.05 * k, range = 660.0 - 25.0 * t;  // 25 m/s towards the sensor
+        const Points target = drone(range, 0.0, 0.0);
+        // Frames 4-7: the cloud's returns climb from the drone's last beam 2.9 m behind it; with
+        // them the cluster is too large to be the target, and the drone would be lost.
+        const Points frame = k >= 4 && k < 8 ? joined(target, backscatter(range + 0.25, 8 * kPitchAz, 0.0, 30, 0.09)) : target;
+        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
+        INFO("frame " << k);
+        REQUIRE(d.found);
+        CHECK_FALSE(d.predicted);
+        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
+    }
+}
+
+TEST_CASE("clutter: tracking every target, a cloud's clumps beside a drone make no track", "[detect][clutter][multi_target]") {
+    DetectorConfig config;
+    MultiTargetTracker tracker(config, kPaperSensor, {});
+    for (int k = 0; k < 10; ++k) {
+        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
+        const auto tracks = tracker.process(t, with_cloud_clumps(drone(range, 0.0, 0.0)));
+        INFO("frame " << k);
+        if (k == 0) continue;  // a track is confirmed by its second cluster
+        REQUIRE(tracks.size() == 1);
+        CHECK((tracks[0].box.centre - bounding_box(drone(range, 0.0, 0.0)).centre).norm() < 1e-6);
+    }
+    // Without the test the clumps are tracked as targets.
+    config.range_coherence_m = 0.0;
+    MultiTargetTracker untested(config, kPaperSensor, {});
+    std::size_t tracks = 0;
+    for (int k = 0; k < 3; ++k) tracks = untested.process(0.05 * k, with_cloud_clumps(drone(660.0 - 1.25 * k, 0.0, 0.0))).size();
+    CHECK(tracks == 5);
+}
