@@ -1,6 +1,7 @@
 #include "ladarsim/campaign/distribution.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include "ladarsim/dataset/input_error.h"
@@ -9,7 +10,12 @@ namespace ladarsim::campaign {
 
 namespace {
 
-std::string number_text(double x) { return nlohmann::json(x).dump(); }
+/// The shortest text that reads back as `x` ("300", not "300.0").
+std::string number_text(double x) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, x).ptr;
+    return std::string(text, end);
+}
 
 /// The weights of a choice of `n` values: all 1 without "weights".
 std::vector<double> cumulative_weights(SpecFields& d, std::size_t n) {
