@@ -12,6 +12,7 @@
 #include "ladarsim/campaign/campaign_spec.h"
 #include "ladarsim/dataset/input_error.h"
 #include "option_checks.h"
+#include "plot_script.h"
 #include "progress.h"
 #include "stop_signal.h"
 
@@ -107,6 +108,8 @@ struct CampaignCommand {
         std::printf("\n");
         if (s.index_written) {
             std::printf("wrote %s/campaign.json: %d sequences of %d frames\n", out.c_str(), spec.sequences, spec.frames);
+            run_plot_script("plot_campaign.py", out + "/campaign.json", out + "/card.md");
+            std::printf("wrote %s/card.md, the dataset card, and its plots card-*.png\n", out.c_str());
         } else {
             std::printf("%d of the campaign's %d sequences are finished; campaign.json is written by the run that "
                         "finishes the last\n",

@@ -52,6 +52,15 @@ for s in seqs:
     assert [o["id"] for o in s["sampled"]["objects"]] == [o["id"] for o in scenario.get("objects", [])]
 PY
 
+# The card: its plots drawn, its tables the index's.
+for png in card-targets.png card-balance.png card-visibility.png; do
+  grep -qF "]($png)" "$work/a/card.md" 2>/dev/null || fail "card.md does not show $png"
+  [ "$(head -c 8 "$work/a/$png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "$png is not a PNG"
+done
+grep -q "^| train | 4 | 16 |$" "$work/a/card.md" && grep -q "^| val | 1 | 4 |$" "$work/a/card.md" ||
+  fail "card.md's splits are not the index's: $(grep -A5 '## Splits' "$work/a/card.md")"
+grep -q "^wrote .*card.md" "$work/a.out" || fail "the summary does not name the card: $(cat "$work/a.out")"
+
 # Shards 0/2 and 1/2 into one directory equal the unsharded run (4 sequences of 2 frames).
 "$bin" campaign "$tiny" --out "$work/whole" --quiet >/dev/null 2>"$work/err" || fail "the tiny spec failed: $(cat "$work/err")"
 "$bin" campaign "$tiny" --out "$work/sharded" --shard 0/2 --quiet >"$work/out" 2>"$work/err" || fail "shard 0/2 failed: $(cat "$work/err")"
