@@ -93,6 +93,28 @@ grep -q "^rendered 3 sequences .*; 1 of this share were already there" "$work/ou
   fail "the resumed sequence rendered its finished frame again"
 same_campaign "$work/whole" "$work/resumed" "a stopped campaign resumed"
 
+# export-kitti on a campaign: every sequence's frames numbered on in the index's order, each
+# split's frame numbers in its ImageSets file, the splits disjoint and covering every frame.
+"$bin" export-kitti "$work/whole" --out "$work/kitti" >"$work/out" 2>"$work/err" || fail "export-kitti of a campaign failed: $(cat "$work/err")"
+grep -q "^exported 8 frames" "$work/out" || fail "export-kitti did not export 8 frames: $(cat "$work/out")"
+/usr/bin/python3 - "$work/whole" "$work/kitti" <<'PY' || fail "the campaign's export does not match its index"
+import json, pathlib, sys
+campaign, kitti = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+index = json.load(open(campaign / "campaign.json"))
+expected, number = {"train": [], "val": [], "test": []}, 0
+for s in index["sequences"]:
+    for _ in range(s["frames"]):
+        expected[s["split"]].append(f"{number:06d}")
+        number += 1
+for split, numbers in expected.items():
+    listed = (kitti / "ImageSets" / f"{split}.txt").read_text().split()
+    assert listed == numbers, (split, listed, numbers)
+assert sorted(p.stem for p in (kitti / "training" / "velodyne").glob("*.bin")) == [f"{k:06d}" for k in range(number)]
+record = json.load(open(kitti / "ladarsim_export.json"))
+assert [d["directory"] for d in record["datasets"]] == [s["directory"] for s in index["sequences"]]
+assert [d["split"] for d in record["datasets"]] == [s["split"] for s in index["sequences"]]
+PY
+
 # Refusals: exit 2, one line on stderr naming the key.
 expect_refusal() {
   local what=$1 word=$2 rc=$3
