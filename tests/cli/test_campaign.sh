@@ -93,6 +93,19 @@ grep -q "^rendered 3 sequences .*; 1 of this share were already there" "$work/ou
   fail "the resumed sequence rendered its finished frame again"
 same_campaign "$work/whole" "$work/resumed" "a stopped campaign resumed"
 
+# Killed outright (SIGKILL: no chance to finish a frame or tidy up) inside sequence 1, with 18 of
+# its 20 frames to go: the same command finishes the campaign to the files of a run never killed.
+"$bin" campaign "$tiny" --out "$work/whole20" --frames 20 --quiet >/dev/null 2>"$work/err" || fail "20 frames: $(cat "$work/err")"
+"$bin" campaign "$tiny" --out "$work/killed" --frames 20 --threads 1 --quiet >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 3000); do [ -e "$work/killed/sequences/000001.partial/frames/000002.pcd" ] && break; sleep 0.01; done
+kill -KILL "$pid"
+wait "$pid" 2>/dev/null
+[ -d "$work/killed/sequences/000001.partial" ] && [ ! -e "$work/killed/sequences/000001" ] ||
+  fail "the kill did not land inside sequence 1: $(ls "$work/killed/sequences")"
+"$bin" campaign "$tiny" --out "$work/killed" --frames 20 --quiet >/dev/null 2>"$work/err" || fail "the killed campaign did not resume: $(cat "$work/err")"
+same_campaign "$work/whole20" "$work/killed" "a killed campaign resumed"
+
 # export-kitti on a campaign: every sequence's frames numbered on in the index's order, each
 # split's frame numbers in its ImageSets file, the splits disjoint and covering every frame.
 "$bin" export-kitti "$work/whole" --out "$work/kitti" >"$work/out" 2>"$work/err" || fail "export-kitti of a campaign failed: $(cat "$work/err")"
