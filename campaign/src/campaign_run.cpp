@@ -1,5 +1,7 @@
 #include "ladarsim/campaign/campaign_run.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 
@@ -21,6 +23,29 @@ nlohmann::json spec_record(const CampaignSpec& spec) {
     return {{"spec_file", fs::absolute(spec.file).lexically_normal().string()}, {"spec", spec.source}};
 }
 
+/// write_json for a file that the shards of an array job, started or finishing together, may
+/// all write with the same bytes: each writes under a name of its own and renames it into place
+/// (write_json's own temporary, `<path>.tmp`, would be shared).
+void write_shared_json(const fs::path& path, const nlohmann::json& value) {
+    char host[256] = "";
+    ::gethostname(host, sizeof host - 1);
+    const fs::path mine = path.string() + "." + host + "." + std::to_string(::getpid());
+    write_json(mine, value);
+    fs::rename(mine, path);
+}
+
+/// Whether `dir` holds nothing but what another run starting this campaign at the same moment
+/// writes first: sequences/ (empty) and its record under a temporary name.
+bool only_a_campaign_starting(const fs::path& dir) {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const std::string entry = e.path().filename().string();
+        const bool starting = (entry == "sequences" && fs::is_empty(e.path(), ec)) || entry.rfind("spec.json.", 0) == 0;
+        if (!starting) return false;
+    }
+    return true;
+}
+
 /// The campaign directory, made ready: absent or empty (created), or a campaign of this spec.
 fs::path prepared_campaign_dir(const CampaignSpec& spec, const fs::path& requested) {
     fs::path out = fs::absolute(requested).lexically_normal();
@@ -36,10 +61,10 @@ fs::path prepared_campaign_dir(const CampaignSpec& spec, const fs::path& request
                              "holds a campaign of another spec, seed or size (" + record_file.string() +
                                  "); give another directory");
     } else {
-        if (fs::exists(out, ec) && !fs::is_empty(out, ec))
+        if (fs::exists(out, ec) && !only_a_campaign_starting(out))
             throw InputError(name, "--out", "is neither empty nor a campaign (no spec.json): refusing to write into it");
         fs::create_directories(out / "sequences");
-        write_json(record_file, record);
+        write_shared_json(record_file, record);
     }
     fs::create_directories(out / "sequences");
     return out;
@@ -116,7 +141,7 @@ CampaignSummary run_campaign(const CampaignSpec& spec, const CampaignOptions& op
     summary.seconds = std::chrono::duration<double>(Clock::now() - started).count();
     for (int i = 0; i < spec.sequences; ++i) summary.campaign_done += finished(out, i);
     if (summary.campaign_done == spec.sequences) {
-        write_json(out / "campaign.json", campaign_index(spec, out));
+        write_shared_json(out / "campaign.json", campaign_index(spec, out));
         summary.index_written = true;
     }
     return summary;

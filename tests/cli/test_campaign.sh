@@ -71,6 +71,14 @@ grep -q "^2 of the campaign's 4 sequences are finished" "$work/out" || fail "sha
 "$bin" campaign "$tiny" --out "$work/sharded" --shard 1/2 --quiet >"$work/out" 2>"$work/err" || fail "shard 1/2 failed: $(cat "$work/err")"
 same_campaign "$work/whole" "$work/sharded" "shards 0/2 and 1/2"
 
+# The shards of an array job, started together on a fresh directory: the same campaign.
+"$bin" campaign "$tiny" --out "$work/together" --shard 0/2 --quiet >/dev/null 2>"$work/err0" &
+first=$!
+"$bin" campaign "$tiny" --out "$work/together" --shard 1/2 --quiet >/dev/null 2>"$work/err1" || fail "shard 1/2 started together failed: $(cat "$work/err1")"
+wait "$first" || fail "shard 0/2 started together failed: $(cat "$work/err0")"
+same_campaign "$work/whole" "$work/together" "shards started together"
+[ -z "$(find "$work/together" -maxdepth 1 -name 'spec.json.*' -o -maxdepth 1 -name 'campaign.json.*')" ] || fail "temporaries left behind"
+
 # Run again: nothing to render, the index unchanged.
 cp "$work/whole/campaign.json" "$work/index-before"
 "$bin" campaign "$tiny" --out "$work/whole" --quiet >"$work/out" 2>"$work/err" || fail "a finished campaign run again failed"
