@@ -7,7 +7,6 @@
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/input_error.h"
-#include "ladarsim/dataset/json_fields.h"
 
 namespace ladarsim::campaign {
 
