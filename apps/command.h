@@ -18,6 +18,7 @@ void add_command(CLI::App& app, std::shared_ptr<Command> command, int& exit_code
 }
 
 void add_render_command(CLI::App& app, int& exit_code, const std::unique_ptr<MpiTeam>& team);
+void add_campaign_command(CLI::App& app, int& exit_code);
 void add_sensor_command(CLI::App& app, int& exit_code);
 void add_table1_command(CLI::App& app, int& exit_code);
 void add_detect_command(CLI::App& app, int& exit_code);

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     // In the order `ladarsim --help` lists them.
     int exit_code = 0;
     apps::add_render_command(app, exit_code, team);
+    apps::add_campaign_command(app, exit_code);
     apps::add_sensor_command(app, exit_code);
     apps::add_table1_command(app, exit_code);
     apps::add_detect_command(app, exit_code);

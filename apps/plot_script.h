@@ -1,5 +1,5 @@
 #pragma once
-// The plots of `eval`, `table1`, `bench` and `preview`: a Python script from ladarsim's data
+// The plots of `eval`, `table1`, `bench`, `preview` and `campaign`: a Python script from ladarsim's data
 // (share/ladarsim/scripts/) draws a PNG from what the command wrote.
 #include <string>
 #include <vector>

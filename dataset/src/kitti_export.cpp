@@ -117,31 +117,112 @@ float largest_intensity(const std::vector<std::filesystem::path>& pcds, const Ki
     return largest;
 }
 
-nlohmann::json export_record(const std::filesystem::path& dataset_dir, const Manifest& manifest, float intensity_scale,
-                             const KittiExportOptions& options, nlohmann::json frames) {
-    return {{"software", software_json()},
-            {"exported_from", dataset_dir.string()},
-            {"dataset_id", manifest.id},
-            {"format", "KITTI object detection (training/velodyne, label_2, calib); no image_2: no camera"},
-            {"velodyne_frame", "ladarsim's sensor frame unrotated: x forward, y left, z up, metres, sensor at the origin"},
-            {"camera_frame", "Tr_velo_to_cam: x right = -y, y down = -z, z forward = x; R0_rect and P0..P3 identity"},
-            {"intensity", {{"kitti", "ladarsim intensity (primary photo-electrons, or the recording's unit) / scale, "
-                                     "negative values written as 0"},
-                           {"scale", intensity_scale}}},
-            {"labels", "one per object of a labelled class with returns in the frame, in ground truth's order (frames[].labels: "
-                       "id, type, returns, exact_label); exact box: the tightest box turned about the vertical only "
-                       "that encloses ground truth's box_sensor; label box: see label_boxes; truncated 0, occluded 3 "
-                       "(unknown), bbox -1 -1 -1 -1 (no image)"},
-            {"label_boxes", options.exact_boxes ? "exact" : "holding the returns"},
-            {"label_boxes_are", options.exact_boxes
-                                    ? "the exact boxes (--exact-boxes)"
-                                    : "the exact box grown about its heading to the tightest box holding it and every return of "
-                                      "the object label_margin_m inside its faces (a return lies on its beam's axis, up to half "
-                                      "a footprint beside the object)"},
-            {"label_margin_m", kKittiLabelMargin_m},
-            {"class_map", type_of_class()},
-            {"not_labelled", "every other class (the scene: building, terrain, tree, cloud, background)"},
-            {"frames", std::move(frames)}};
+/// ladarsim_export.json: `origin` (where the frames came from) and what the export holds.
+nlohmann::json export_record(nlohmann::json origin, float intensity_scale, const KittiExportOptions& options,
+                             nlohmann::json frames) {
+    nlohmann::json record = {{"software", software_json()}};
+    record.update(origin);
+    record.update(nlohmann::json{
+        {"format", "KITTI object detection (training/velodyne, label_2, calib); no image_2: no camera"},
+        {"velodyne_frame", "ladarsim's sensor frame unrotated: x forward, y left, z up, metres, sensor at the origin"},
+        {"camera_frame", "Tr_velo_to_cam: x right = -y, y down = -z, z forward = x; R0_rect and P0..P3 identity"},
+        {"intensity", {{"kitti", "ladarsim intensity (primary photo-electrons, or the recording's unit) / scale, "
+                                 "negative values written as 0"},
+                       {"scale", intensity_scale}}},
+        {"labels", "one per object of a labelled class with returns in the frame, in ground truth's order (frames[].labels: "
+                   "id, type, returns, exact_label); exact box: the tightest box turned about the vertical only "
+                   "that encloses ground truth's box_sensor; label box: see label_boxes; truncated 0, occluded 3 "
+                   "(unknown), bbox -1 -1 -1 -1 (no image)"},
+        {"label_boxes", options.exact_boxes ? "exact" : "holding the returns"},
+        {"label_boxes_are", options.exact_boxes
+                                ? "the exact boxes (--exact-boxes)"
+                                : "the exact box grown about its heading to the tightest box holding it and every return of "
+                                  "the object label_margin_m inside its faces (a return lies on its beam's axis, up to half "
+                                  "a footprint beside the object)"},
+        {"label_margin_m", kKittiLabelMargin_m},
+        {"class_map", type_of_class()},
+        {"not_labelled", "every other class (the scene: building, terrain, tree, cloud, background)"},
+        {"frames", std::move(frames)}});
+    return record;
+}
+
+/// A source dataset read for export: its frames and their ground truth, checked before anything
+/// is written.
+struct SourceFrames {
+    std::filesystem::path dir;  ///< absolute
+    Manifest manifest;
+    std::vector<std::filesystem::path> pcds;
+    std::vector<std::optional<FrameGroundTruth>> truth;
+};
+
+SourceFrames read_source(const std::filesystem::path& dataset_dir) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dataset_dir, ec))
+        throw InputError(dataset_dir.string(), "DIR",
+                         std::filesystem::exists(dataset_dir, ec) ? "is not a directory" : "no such directory");
+    SourceFrames source;
+    source.dir = std::filesystem::absolute(dataset_dir).lexically_normal();
+    source.manifest = read_manifest(source.dir / "manifest.json");
+    source.pcds = frame_pcd_files(source.dir);
+    source.truth = ground_truth_of_frames(source.dir, source.pcds);
+    return source;
+}
+
+/// Writes `sources` into `out_dir` as one export, frames numbered on from 000000 in the order
+/// given; `origin` says in ladarsim_export.json where they came from, `split_of_source` (empty:
+/// no ImageSets) the split each source's frames are listed in.
+KittiExportSummary export_frames(const std::vector<SourceFrames>& sources, const std::vector<std::string>& split_of_source,
+                                 nlohmann::json origin, const std::filesystem::path& out_dir,
+                                 const KittiExportProgress& progress) {
+    KittiExportSummary summary;
+    summary.out = checked_output_dir(out_dir, kitti_layout());
+    std::vector<std::filesystem::path> pcds;
+    for (const auto& source : sources) pcds.insert(pcds.end(), source.pcds.begin(), source.pcds.end());
+    const float largest = largest_intensity(pcds, progress);
+    summary.intensity_scale = largest > 0.0f ? largest : 1.0f;
+
+    const std::filesystem::path staging = staging_dir(summary.out);
+    std::filesystem::remove_all(staging);
+    for (const char* d : {"velodyne", "label_2", "calib"}) std::filesystem::create_directories(staging / "training" / d);
+    nlohmann::json frames = nlohmann::json::array();
+    std::map<std::string, std::string> image_sets;
+    std::size_t k = 0;
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+        const SourceFrames& source = sources[s];
+        for (std::size_t i = 0; i < source.pcds.size(); ++i, ++k) {
+            const std::vector<Return> returns = read_frame_pcd(source.pcds[i]);
+            const std::string stem = frame_file_stem(k);
+            write_text(staging / "training" / "velodyne" / (stem + ".bin"), velodyne_bytes(returns, summary.intensity_scale));
+            nlohmann::json entry = {{"kitti", stem}, {"pcd", "frames/" + source.pcds[i].filename().string()}, {"returns", returns.size()}};
+            if (sources.size() > 1 || !split_of_source.empty()) entry["dataset"] = s;
+            std::vector<Label> labels;
+            if (source.truth[i]) {
+                labels = frame_labels(source.truth[i]->objects, returns, options);
+                entry["frame_index"] = source.truth[i]->index;
+            }
+            std::string text;
+            entry["labels"] = nlohmann::json::array();
+            for (const auto& label : labels) {
+                text += label.line + "\n";
+                entry["labels"].push_back(label.record);
+            }
+            write_text(staging / "training" / "label_2" / (stem + ".txt"), text);
+            frames.push_back(std::move(entry));
+            summary.labels += labels.size();
+            write_text(staging / "training" / "calib" / (stem + ".txt"), kitti_calib_text());
+            summary.returns += returns.size();
+            if (!split_of_source.empty()) image_sets[split_of_source[s]] += stem + "\n";
+            if (progress.frame_written) progress.frame_written(static_cast<int>(k + 1), static_cast<int>(pcds.size()));
+        }
+    }
+    if (!split_of_source.empty()) {
+        std::filesystem::create_directories(staging / "ImageSets");
+        for (const char* split : {"train", "val", "test"}) write_text(staging / "ImageSets" / (std::string(split) + ".txt"), image_sets[split]);
+    }
+    summary.frames = static_cast<int>(k);
+    write_json(staging / "ladarsim_export.json", export_record(std::move(origin), summary.intensity_scale, options, std::move(frames)));
+    summary.kept = swap_in_output(staging, summary.out, kitti_layout());
+    return summary;
 }
 
 /// The heading of an upright box about a ground-truth box, and its axes in the velodyne frame:
@@ -239,10 +320,11 @@ const std::string& kitti_calib_text() {
 const OutputLayout& kitti_layout() {
     static const OutputLayout layout{
         "export", "ladarsim_export.json",
-        [](const std::string& name) { return name == "training" || name == "ladarsim_export.json"; },
+        [](const std::string& name) { return name == "training" || name == "ImageSets" || name == "ladarsim_export.json"; },
         [](const std::string& relative) {
             static const std::regex own(
-                R"(training/(velodyne|label_2|calib)|training/velodyne/\d{6,}\.bin(\.tmp)?|training/(label_2|calib)/\d{6,}\.txt(\.tmp)?)");
+                R"(training/(velodyne|label_2|calib)|training/velodyne/\d{6,}\.bin(\.tmp)?|training/(label_2|calib)/\d{6,}\.txt(\.tmp)?)"
+                R"(|ImageSets/(train|val|test)\.txt(\.tmp)?)");
             return std::regex_match(relative, own);
         }};
     return layout;
@@ -250,51 +332,29 @@ const OutputLayout& kitti_layout() {
 
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
                                 const KittiExportOptions& options, const KittiExportProgress& progress) {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dataset_dir, ec))
-        throw InputError(dataset_dir.string(), "DIR",
-                         std::filesystem::exists(dataset_dir, ec) ? "is not a directory" : "no such directory");
-    const std::filesystem::path source = std::filesystem::absolute(dataset_dir).lexically_normal();
-    const Manifest manifest = read_manifest(source / "manifest.json");
-    const auto pcds = frame_pcd_files(source);
-    const auto truth = ground_truth_of_frames(source, pcds);
+    const SourceFrames source = read_source(dataset_dir);
+    const nlohmann::json origin = {{"exported_from", source.dir.string()}, {"dataset_id", source.manifest.id}};
+    return export_frames({source}, {}, origin, out_dir, options, progress);
+}
 
-    KittiExportSummary summary;
-    summary.out = checked_output_dir(out_dir, kitti_layout());
-    const float largest = largest_intensity(pcds, progress);
-    summary.intensity_scale = largest > 0.0f ? largest : 1.0f;
-
-    const std::filesystem::path staging = staging_dir(summary.out);
-    std::filesystem::remove_all(staging);
-    for (const char* d : {"velodyne", "label_2", "calib"}) std::filesystem::create_directories(staging / "training" / d);
-    nlohmann::json frames = nlohmann::json::array();
-    for (std::size_t i = 0; i < pcds.size(); ++i) {
-        const std::vector<Return> returns = read_frame_pcd(pcds[i]);
-        const std::string stem = frame_file_stem(i);
-        write_text(staging / "training" / "velodyne" / (stem + ".bin"), velodyne_bytes(returns, summary.intensity_scale));
-        nlohmann::json entry = {{"kitti", stem}, {"pcd", "frames/" + pcds[i].filename().string()}, {"returns", returns.size()}};
-        std::vector<Label> labels;
-        if (truth[i]) {
-            labels = frame_labels(truth[i]->objects, returns, options);
-            entry["frame_index"] = truth[i]->index;
-        }
-        std::string text;
-        entry["labels"] = nlohmann::json::array();
-        for (const auto& label : labels) {
-            text += label.line + "\n";
-            entry["labels"].push_back(label.record);
-        }
-        write_text(staging / "training" / "label_2" / (stem + ".txt"), text);
-        frames.push_back(std::move(entry));
-        summary.labels += labels.size();
-        write_text(staging / "training" / "calib" / (stem + ".txt"), kitti_calib_text());
-        summary.returns += returns.size();
-        if (progress.frame_written) progress.frame_written(static_cast<int>(i + 1), static_cast<int>(pcds.size()));
+KittiExportSummary export_kitti(const std::filesystem::path& origin, const std::vector<KittiSource>& sources,
+                                const std::filesystem::path& out_dir, const KittiExportOptions& options,
+                                const KittiExportProgress& progress) {
+    std::vector<SourceFrames> frames;
+    std::vector<std::string> splits;
+    nlohmann::json datasets = nlohmann::json::array();
+    const std::filesystem::path from = std::filesystem::absolute(origin).lexically_normal();
+    for (const KittiSource& s : sources) {
+        if (s.split != "train" && s.split != "val" && s.split != "test")
+            throw InputError(s.dataset_dir.string(), "split", "\"" + s.split + "\" is not one of: train, val, test");
+        frames.push_back(read_source(s.dataset_dir));
+        splits.push_back(s.split);
+        datasets.push_back({{"directory", frames.back().dir.lexically_relative(from).string()},
+                            {"dataset_id", frames.back().manifest.id},
+                            {"split", s.split}});
     }
-    summary.frames = static_cast<int>(pcds.size());
-    write_json(staging / "ladarsim_export.json", export_record(source, manifest, summary.intensity_scale, options, std::move(frames)));
-    summary.kept = swap_in_output(staging, summary.out, kitti_layout());
-    return summary;
+    const nlohmann::json record = {{"exported_from", from.string()}, {"datasets", datasets}};
+    return export_frames(frames, splits, record, out_dir, options, progress);
 }
 
 }  // namespace ladarsim

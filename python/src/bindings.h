@@ -11,6 +11,7 @@ void bind_frames(py::module_& m);
 void bind_sensors(py::module_& m);
 void bind_render(py::module_& m);
 void bind_datasets(py::module_& m);
+void bind_campaigns(py::module_& m);
 void bind_detection(py::module_& m);
 
 }  // namespace ladarsim::python

@@ -35,6 +35,7 @@ PYBIND11_MODULE(ladarsim, m) {
 
 render(scenario, ...)      frames one at a time, or a dataset directory with out=DIR
 Dataset(dir)               a rendered or recorded dataset, read lazily
+Campaign(dir, split=None)  a campaign's sequences (`ladarsim campaign`), each with its Dataset
 detect(dataset, ...)       Algorithm 1 over a dataset, as `ladarsim detect` reports it
 evaluate(dataset, report)  the scores of its boxes, as `ladarsim eval --json` writes them
 benchmark(dataset, ...)    a detector run and scored with EAO, as `ladarsim benchmark --json`
@@ -46,5 +47,6 @@ InputError                 bad input (a ValueError), naming the file, field and 
     bind_sensors(m);
     bind_render(m);
     bind_datasets(m);
+    bind_campaigns(m);
     bind_detection(m);
 }

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/common/centroid.h>
 #include <pcl/common/eigen.h>
@@ -198,6 +200,13 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
     // the plane fits work relative to the map's centroid.
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const auto& p : map.points_world) centre += p / static_cast<double>(n);
+    std::optional<Eigen::Vector3d> scanner = options.scanner_position_m;
+    if (options.heading_deg != 0.0) {
+        const Eigen::AngleAxisd turn(options.heading_deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ());
+        const auto turned = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return centre + turn * (p - centre); };
+        for (auto& p : map.points_world) p = turned(p);
+        if (scanner) scanner = turned(*scanner);
+    }
     pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
     cloud->resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -220,13 +229,12 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
         const NeighbourhoodPlane plane = fit_plane(*cloud, plane_points);
         // Discs face where the map was recorded from: up for an airborne survey, else its scanner.
         const Eigen::Vector3f towards =
-            options.scanner_position_m
-                ? Eigen::Vector3f((*options.scanner_position_m - map.points_world[i]).normalized().cast<float>())
+            scanner ? Eigen::Vector3f((*scanner - map.points_world[i]).normalized().cast<float>())
                 : Eigen::Vector3f::UnitZ();
         if (!plane.normal) {
-            map.normals[i] = options.scanner_position_m ? facing_across(towards, plane.axis) : towards;
+            map.normals[i] = scanner ? facing_across(towards, plane.axis) : towards;
             ++rep.degenerate_normals;
-        } else if (options.scanner_position_m && std::abs(plane.normal->dot(towards)) < kScanLineCos) {
+        } else if (scanner && std::abs(plane.normal->dot(towards)) < kScanLineCos) {
             map.normals[i] = towards;
             ++rep.scan_line_normals;
         } else {

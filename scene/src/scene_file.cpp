@@ -220,6 +220,7 @@ BackgroundMap read_background(JsonFields& b, const fs::path& scenario_dir) {
     BackgroundOptions options;
     options.scale = b.number("scale", 1e-6, 1e6, 1.0);
     options.offset_m = b.vec3("offset_m", Eigen::Vector3d::Zero());
+    options.heading_deg = b.number("heading_deg", -360.0, 360.0, 0.0);
     options.normal_neighbours = static_cast<int>(b.integer("neighbours", 3, 64, options.normal_neighbours));
     if (b.has("scanner_position_m")) options.scanner_position_m = b.vec3("scanner_position_m");
     const int reflectance_keys = b.has("reflectance") + b.has("reflectance_at_max_intensity") + b.has("reflectance_per_intensity");

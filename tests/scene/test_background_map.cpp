@@ -406,3 +406,28 @@ TEST_CASE("background_map: the recorded Autzen map", "[background_map][data]") {
     CHECK(*lo >= 0.0f);
     CHECK(*hi == Approx(0.6));
 }
+
+TEST_CASE("background_map: a heading turns the placed map and its scanner about the points' centroid", "[background_map]") {
+    // A tilted 12 x 8 grid: turned a quarter, x - cx becomes -(y - cy) and y - cy becomes x - cx,
+    // the tilt's normal turns with it, and a scanner beside the map turns too (the discs that
+    // faced it still face it).
+    TempDir dir;
+    const double a = 0.3, b = -0.2;
+    const fs::path file = write_pcd(dir.path / "tilted.pcd", grid(12, 8, 0.5, 0.5, a, b, 0.0, 10.0, 20.0), false);
+    BackgroundOptions options;
+    options.offset_m = Eigen::Vector3d(100.0, 0.0, 5.0);
+    options.scanner_position_m = Eigen::Vector3d(100.0, 20.0, -20.0);
+    const BackgroundMap still = load_background_map(file, options);
+    options.heading_deg = 90.0;
+    const BackgroundMap turned = load_background_map(file, options);
+    REQUIRE(turned.points_world.size() == still.points_world.size());
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const auto& p : still.points_world) centre += p / static_cast<double>(still.points_world.size());
+    for (std::size_t i = 0; i < still.points_world.size(); ++i) {
+        const Eigen::Vector3d d = still.points_world[i] - centre;
+        CHECK((turned.points_world[i] - (centre + Eigen::Vector3d(-d.y(), d.x(), d.z()))).norm() < 1e-9);
+        const Eigen::Vector3f n = still.normals[i];
+        CHECK((turned.normals[i] - Eigen::Vector3f(-n.y(), n.x(), n.z())).norm() < 1e-4f);
+        CHECK(turned.radii_m[i] == Approx(still.radii_m[i]).epsilon(1e-5));
+    }
+}

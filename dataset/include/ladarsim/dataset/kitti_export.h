@@ -73,7 +73,8 @@ std::string kitti_label_line(const std::string& type, const KittiBox& box);
 const std::string& kitti_calib_text();
 
 /// The export's directory layout: marker ladarsim_export.json, own entries training/ (holding
-/// only velodyne/, label_2/ and calib/ with NNNNNN files) and the marker.
+/// only velodyne/, label_2/ and calib/ with NNNNNN files), ImageSets/ (train, val and test.txt)
+/// and the marker.
 const OutputLayout& kitti_layout();
 
 struct KittiExportOptions {
@@ -104,5 +105,21 @@ struct KittiExportSummary {
 /// malformed file, or ground truth without one of the frames.
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
                                 const KittiExportOptions& options = {}, const KittiExportProgress& progress = {});
+
+/// One dataset of an export of several, and the split whose ImageSets file lists its frames.
+struct KittiSource {
+    std::filesystem::path dataset_dir;
+    std::string split;  ///< "train", "val" or "test"
+};
+
+/// Several datasets (a campaign's sequences, `origin` the campaign) as one export: their frames
+/// numbered on in the order given, with one intensity scale for all, all under training/ (each
+/// labelled), and ImageSets/train.txt, val.txt and test.txt listing each split's frame numbers.
+/// ladarsim_export.json names `origin`, each dataset (relative to it, with its id and split) and,
+/// per frame, its dataset's place in that list; labels as `options` say. Throws as the
+/// single-dataset export does.
+KittiExportSummary export_kitti(const std::filesystem::path& origin, const std::vector<KittiSource>& sources,
+                                const std::filesystem::path& out_dir, const KittiExportOptions& options = {},
+                                const KittiExportProgress& progress = {});
 
 }  // namespace ladarsim

@@ -16,6 +16,10 @@ struct BackgroundOptions {
     double scale = 1.0;
     /// Added to every (scaled) point, so a map in local coordinates can be placed in the world.
     Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();
+    /// Turns the placed map about the vertical through its points' centroid, from +x towards +y
+    /// (as an object's yaw), so that one survey can be seen from many directions; the scanner
+    /// position turns with it. 0 leaves every point exactly where scale and offset put it.
+    double heading_deg = 0.0;
     /// Neighbours (the point itself included) in each local plane fit for the normal.
     int normal_neighbours = 8;
     /// When set, every point gets this reflectance and the file's intensity is ignored.
@@ -29,7 +33,8 @@ struct BackgroundOptions {
     /// is a calibrated reflectivity, e.g. 0.01 for Velodyne's byte (0-100 % diffuse, above 100
     /// retro-reflectors).
     std::optional<double> reflectance_per_intensity;
-    /// Where the scanner that recorded the map stood (world coordinates, after scale and offset),
+    /// Where the scanner that recorded the map stood (world coordinates, after scale and offset,
+    /// before the heading turns it with the map),
     /// for maps from a ground-based scanner: normals are turned to face it instead of up, and a
     /// point whose plane fit the scanner would see edge-on (neighbours along one scan line, spread
     /// only by range noise: an artefact of the sampling) gets a disc facing the scanner.
