@@ -1,6 +1,6 @@
 #pragma once
-// The plots of `eval`, `table1`, `bench`, `preview` and `campaign`: a Python script from ladarsim's data
-// (share/ladarsim/scripts/) draws a PNG from what the command wrote.
+// The plots of `eval`, `table1`, `bench`, `preview` and `campaign`: a Python script from
+// ladarsim's data (share/ladarsim/scripts/) draws what the command wrote.
 #include <string>
 #include <vector>
 

@@ -170,10 +170,10 @@ SourceFrames read_source(const std::filesystem::path& dataset_dir) {
 
 /// Writes `sources` into `out_dir` as one export, frames numbered on from 000000 in the order
 /// given; `origin` says in ladarsim_export.json where they came from, `split_of_source` (empty:
-/// no ImageSets) the split each source's frames are listed in.
+/// no ImageSets) the split each source's frames are listed in; labels as `options` say.
 KittiExportSummary export_frames(const std::vector<SourceFrames>& sources, const std::vector<std::string>& split_of_source,
                                  nlohmann::json origin, const std::filesystem::path& out_dir,
-                                 const KittiExportProgress& progress) {
+                                 const KittiExportOptions& options, const KittiExportProgress& progress) {
     KittiExportSummary summary;
     summary.out = checked_output_dir(out_dir, kitti_layout());
     std::vector<std::filesystem::path> pcds;

@@ -115,12 +115,26 @@ wait "$pid" 2>/dev/null
 same_campaign "$work/whole20" "$work/killed" "a killed campaign resumed"
 
 # export-kitti on a campaign: every sequence's frames numbered on in the index's order, each
-# split's frame numbers in its ImageSets file, the splits disjoint and covering every frame.
+# split's frame numbers in its ImageSets file, the splits disjoint and covering every frame; label
+# boxes grown to hold the returns, or ground truth's with --exact-boxes, as for one dataset.
 "$bin" export-kitti "$work/whole" --out "$work/kitti" >"$work/out" 2>"$work/err" || fail "export-kitti of a campaign failed: $(cat "$work/err")"
 grep -q "^exported 8 frames" "$work/out" || fail "export-kitti did not export 8 frames: $(cat "$work/out")"
-/usr/bin/python3 - "$work/whole" "$work/kitti" <<'PY' || fail "the campaign's export does not match its index"
+"$bin" export-kitti "$work/whole" --out "$work/kitti-exact" --exact-boxes >"$work/out" 2>"$work/err" ||
+  fail "export-kitti --exact-boxes of a campaign failed: $(cat "$work/err")"
+/usr/bin/python3 - "$work/whole" "$work/kitti" "$work/kitti-exact" <<'PY' || fail "the campaign's export does not match its index"
 import json, pathlib, sys
-campaign, kitti = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+campaign, kitti, exact = (pathlib.Path(a) for a in sys.argv[1:4])
+for directory, boxes in ((kitti, "holding the returns"), (exact, "exact")):
+    record = json.load(open(directory / "ladarsim_export.json"))
+    assert record["label_boxes"] == boxes, (directory, record["label_boxes"])
+    labels = 0
+    for frame in record["frames"]:
+        lines = (directory / "training" / "label_2" / f"{frame['kitti']}.txt").read_text().splitlines()
+        assert len(lines) == len(frame["labels"]), (directory, frame)
+        labels += len(lines)
+        if boxes == "exact":
+            assert lines == [label["exact_label"] for label in frame["labels"]], (frame, lines)
+    assert labels > 0, f"{directory}: no labels to check"
 index = json.load(open(campaign / "campaign.json"))
 expected, number = {"train": [], "val": [], "test": []}, 0
 for s in index["sequences"]:

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # `cmake --install` gives a program that needs neither its source nor its build tree. Installed into
 # a prefix, the prefix then moved elsewhere, and run from an empty directory that is also HOME, it
-# renders, detects, evaluates with a plot to a path holding a quote and a space, draws the preview
-# and serves the viewer's page and three.js; under strace it touches no file of the source or build
-# tree, and no string of its own names them. A failing plot script is one line of error.
+# renders, detects, evaluates with a plot to a path holding a quote and a space, draws the preview,
+# renders the installed campaign spec with its card and serves the viewer's page and three.js;
+# under strace it touches no file of the source or build tree, and no string of its own names them.
+# A failing plot script is one line of error.
 # Usage: test_install.sh LADARSIM_BINARY SOURCE_DIR BUILD_DIR
 source "$(dirname "$0")/harness.sh"
 build=$(realpath "$3")
@@ -50,6 +51,9 @@ head -c 8 "$plot_dir/e.png" 2>/dev/null | grep -qa PNG || fail "eval --plot wrot
 [ "$(ls "$plot_dir")" = e.png ] || fail "eval --plot left more than its PNG: $(ls "$plot_dir")"
 traced preview d --frames 2 >/dev/null 2>"$work/stderr" || fail "preview failed: $(cat "$work/stderr")"
 head -c 8 d/preview.png 2>/dev/null | grep -qa PNG || fail "preview wrote no d/preview.png"
+traced campaign "$prefix/share/ladarsim/campaigns/drones.json" --out c --sequences 1 --frames 1 --quiet >/dev/null 2>"$work/stderr" ||
+  fail "campaign of the installed spec failed: $(cat "$work/stderr")"
+head -c 8 c/card-targets.png 2>/dev/null | grep -qa PNG || fail "campaign drew no card plot c/card-targets.png"
 "$prog" bench --help >"$work/bench-help" 2>&1
 grep -qF "$prefix/share/ladarsim/scenarios/default.json" "$work/bench-help" ||
   fail "bench's default scenario is not the installed one: $(grep -A1 -- --scenario "$work/bench-help")"
@@ -81,6 +85,7 @@ if grep -hF -e "\"$src/" -e "\"$src\"" -e "\"$build/" "$work"/trace.* >"$work/to
   fail "the installed program touched the source or build tree: $(head -3 "$work/touched")"
 fi
 grep -qF "$prefix/share/ladarsim/scripts/plot_eval.py" "$work/trace.eval" || fail "eval ran no installed plot script"
+grep -qF "$prefix/share/ladarsim/scripts/plot_campaign.py" "$work/trace.campaign" || fail "campaign ran no installed plot script"
 
 # A failing script: one line naming it and its last message.
 mkdir -p "$work/broken/matplotlib"
