@@ -14,6 +14,7 @@
 #include "ladarsim/detect/clustering.h"
 #include "option_checks.h"
 #include "ladarsim/detect/sequence.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::apps {
@@ -23,6 +24,7 @@ struct DetectCommand {
     std::string dataset_dir, detections_file, method_name = "vrbnn";
     detect::DetectorConfig detector;
     std::uint32_t target_id = 0;
+    bool force = false;
     std::vector<double> target_size{0.3, 0.3, 0.06};
 
     CLI::App* add(CLI::App& app) {
@@ -32,6 +34,7 @@ struct DetectCommand {
             ->check(CLI::IsMember({"rbnn", "vrbnn", "kalman"}))
             ->capture_default_str();
         detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
+        detect_cmd->add_flag("--force", force, "Replace the --out file even if ladarsim did not write it");
         detect_cmd->add_option("--radius", detector.rbnn_radius_m, "RBNN radius, m")
             ->check(positive_number())
             ->capture_default_str();
@@ -67,6 +70,8 @@ struct DetectCommand {
     int run() {
         detector.method = detect::method_from_string(method_name);
         detector.target_size_m = {target_size[0], target_size[1], target_size[2]};
+        if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + method_name + ".json")).string();
+        check_replaceable(detections_file, "--out", force);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
         // recorded one has none.
@@ -83,8 +88,8 @@ struct DetectCommand {
             found += d["found"].get<bool>() && !d["predicted"].get<bool>();
             predicted += d["predicted"].get<bool>();
         }
-        if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + method_name + ".json")).string();
         write_json(detections_file, out);
+        record_owned(detections_file);
         std::printf("%s over %zu frames: %d detected, %d predicted, %zu without a box; wrote %s\n", method_name.c_str(),
                     detections.size(), found, predicted, detections.size() - found - predicted, detections_file.c_str());
         return 0;

@@ -1,5 +1,6 @@
 // `ladarsim eval`: detections scored against the ground truth (L2, IoU, EAO).
-#include <cmath>
+#include <unistd.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -10,13 +11,21 @@
 #include "command.h"
 #include "plot_script.h"
 #include "ladarsim/detect/sequence.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/json_file.h"
 
 namespace ladarsim::apps {
 namespace {
 
+std::string fixed(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", value);
+    return text;
+}
+
 struct EvalCommand {
     std::string dataset_dir, detections_file, eval_json, eval_plot;
+    bool force = false;
 
     CLI::App* add(CLI::App& app) {
         auto* eval_cmd = app.add_subcommand("eval", "Score detections against the ground truth: L2, IoU, EAO");
@@ -27,34 +36,57 @@ struct EvalCommand {
                              "under point_box, of the box around the points; every target's mota, motp_m, id_switches, "
                              "ap_centre and, under tracking, the counts per class; frames, failures, per frame)");
         eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
+        eval_cmd->add_flag("--force", force, "Replace the --json and --plot files even if ladarsim did not write them");
         return eval_cmd;
     }
 
     int run() {
+        if (!eval_json.empty()) check_replaceable(eval_json, "--json", force);
+        if (!eval_plot.empty()) check_replaceable(eval_plot, "--plot", force);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         const nlohmann::json scores = detect::evaluate_report(sequence, read_json(detections_file), detections_file);
         const auto& interval = scores["eao_interval"];
         const auto& points = scores["point_box"];
-        std::printf("%s: %d frames, mean L2 %.3f m, %d failures, %d frames lost; EAO over lengths %d-%d\n"
+        const std::string l2 = scores["mean_l2_m"].is_null() ? "no mean L2 (the target was detected in no frame)"
+                                                             : "mean L2 " + fixed(scores["mean_l2_m"].get<double>()) + " m";
+        std::printf("%s: %d frames, %s, %d failures, %d frames lost; EAO over lengths %d-%d\n"
                     "  sensor-aware box: mean IoU %.3f (bird's-eye %.3f), EAO %.3f (bird's-eye %.3f)\n"
                     "  box around the points: mean IoU %.3f (bird's-eye %.3f), EAO %.3f (bird's-eye %.3f)\n",
-                    scores["method"].get<std::string>().c_str(), scores["frames"].get<int>(),
-                    scores["mean_l2_m"].is_null() ? NAN : scores["mean_l2_m"].get<double>(), scores["failures"].get<int>(),
-                    scores["frames_lost"].get<int>(), interval[0].get<int>(), interval[1].get<int>(),
+                    scores["method"].get<std::string>().c_str(), scores["frames"].get<int>(), l2.c_str(),
+                    scores["failures"].get<int>(), scores["frames_lost"].get<int>(), interval[0].get<int>(), interval[1].get<int>(),
                     scores["mean_iou"].get<double>(), scores["mean_iou_bev"].get<double>(), scores["eao"].get<double>(),
                     scores["eao_bev"].get<double>(), points["mean_iou"].get<double>(), points["mean_iou_bev"].get<double>(),
                     points["eao"].get<double>(), points["eao_bev"].get<double>());
-        auto figure = [](const nlohmann::json& v) { return v.is_null() ? NAN : v.get<double>(); };
         const auto& tracking = scores["tracking"];
-        std::printf("  every target (%d drone, bird and aircraft sightings): MOTA %.3f, MOTP %.3f m, %d ID switches, "
-                    "%d misses, %d false positives; centre-distance AP %.3f\n",
-                    tracking["objects"].get<int>(), figure(scores["mota"]), figure(scores["motp_m"]), scores["id_switches"].get<int>(),
-                    tracking["misses"].get<int>(), tracking["false_positives"].get<int>(), figure(scores["ap_centre"]));
-        const std::string json_path = eval_json.empty() && !eval_plot.empty() ? eval_plot + ".json" : eval_json;
-        if (!json_path.empty()) write_json(json_path, scores);
+        if (scores["mota"].is_null()) {
+            std::printf("  every target: nothing to score (no drone, bird or aircraft sighting in the ground truth)\n");
+        } else {
+            const std::string ap = scores["ap_centre"].is_null() ? "none (no track)" : fixed(scores["ap_centre"].get<double>());
+            const std::string motp = scores["motp_m"].is_null() ? "none (nothing matched)" : fixed(scores["motp_m"].get<double>()) + " m";
+            std::printf("  every target (%d drone, bird and aircraft sightings): MOTA %.3f, MOTP %s, %d ID switches, "
+                        "%d misses, %d false positives; centre-distance AP %s\n",
+                        tracking["objects"].get<int>(), scores["mota"].get<double>(), motp.c_str(),
+                        scores["id_switches"].get<int>(), tracking["misses"].get<int>(), tracking["false_positives"].get<int>(),
+                        ap.c_str());
+        }
+        if (!eval_json.empty()) {
+            write_json(eval_json, scores);
+            record_owned(eval_json);
+        }
         if (!eval_plot.empty()) {
-            run_plot_script("plot_eval.py", json_path, eval_plot);
+            // The plot script reads the scores from a file: without --json, a temporary one of ours.
+            const std::filesystem::path json_path =
+                !eval_json.empty() ? std::filesystem::path(eval_json)
+                                   : std::filesystem::temp_directory_path() / ("ladarsim-eval-" + std::to_string(::getpid()) + ".json");
+            if (eval_json.empty()) write_json(json_path, scores);
+            try {
+                run_plot_script("plot_eval.py", json_path.string(), eval_plot);
+            } catch (...) {
+                if (eval_json.empty()) std::filesystem::remove(json_path);
+                throw;
+            }
             if (eval_json.empty()) std::filesystem::remove(json_path);
+            record_owned(eval_plot);
         }
         return 0;
     }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/json_file.h"
 #include "ladarsim/dataset/ouster_pcap.h"
 #include "ladarsim/sensor_model/ouster_sensor.h"
@@ -17,6 +18,7 @@ namespace {
 struct SensorCommand {
     std::string preset = "paper_ladar";
     std::string metadata_file, out_file;
+    bool force = false;
     CLI::App* show = nullptr;
 
     CLI::App* add(CLI::App& app) {
@@ -27,7 +29,8 @@ struct SensorCommand {
         auto* ouster = sensor->add_subcommand(
             "from-ouster", "Write the sensor file of an Ouster unit from its metadata (calibration) JSON alone");
         ouster->add_option("metadata", metadata_file, "The unit's metadata file (beam angles, lidar mode, ...)")->required();
-        ouster->add_option("--out", out_file, "Sensor file to write (default: print it)");
+        ouster->add_option("--out", out_file, "Sensor file to write (default: print it); an existing one only with --force");
+        ouster->add_flag("--force", force, "Replace the --out file");
         return sensor;
     }
 
@@ -36,6 +39,7 @@ struct SensorCommand {
             std::cout << sensor_model::to_json(sensor_model::sensor_preset(preset)).dump(2) << "\n";
             return 0;
         }
+        if (!out_file.empty()) check_replaceable(out_file, "--out", force);
         const nlohmann::json sensor = sensor_model::ouster_sensor_json(read_ouster_metadata(metadata_file));
         if (out_file.empty()) {
             std::cout << sensor.dump(2) << "\n";
