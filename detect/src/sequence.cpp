@@ -367,7 +367,12 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
     if (!report.is_object()) throw InputError(file, "(file)", "not a report of ladarsim detect");
     check_same_dataset(report, file, s);
     if (!report.contains("supervised") || !report.contains("target"))
-        throw InputError(file, "supervised", "missing: the dataset had no ground truth when detect ran");
+        throw InputError(file, "target",
+                         s.truth.empty()       ? "none: nothing to score, the dataset has no ground truth (a recorded dataset)"
+                         : !default_target(s) ? "none: nothing to score, the ground truth has no drone for detect to take as its "
+                                                "target; run detect again with --target ID (an object of " +
+                                                    (s.directory / "ground_truth.json").string() + ")"
+                                              : "missing, with the supervised runs: not a report of `ladarsim detect` on this dataset");
     try {
         std::vector<Detection> detections;
         for (const auto& j : report.at("detections")) detections.push_back(detection_from_json(j));

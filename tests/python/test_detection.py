@@ -37,5 +37,5 @@ def test_unknown_or_mistyped_options_are_input_errors(cli_small):
     with pytest.raises(ladarsim.InputError, match=r"dataset: missing"):
         ladarsim.evaluate(cli_small, {"detections": []})
     report = ladarsim.detect(cli_small)
-    with pytest.raises(ladarsim.InputError, match=r"supervised"):
+    with pytest.raises(ladarsim.InputError, match=r"target: missing"):
         ladarsim.evaluate(cli_small, {"dataset": report["dataset"], "detections": []})
