@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "dry_run.h"
 #include "frame_budget.h"
 #include "progress.h"
 #include "option_checks.h"
@@ -57,6 +58,7 @@ struct RenderCommand {
     std::uint64_t seed = 0;
     bool quiet = false;
     bool resume = false;
+    bool dry_run = false;
     CLI::App* render = nullptr;
 
     explicit RenderCommand(const std::unique_ptr<MpiTeam>& team) : team(team) {}
@@ -77,6 +79,9 @@ struct RenderCommand {
         render->add_option("--threads", threads, "Worker threads (0, the default: all cores); output does not depend on it")
             ->check(whole_number(0, std::numeric_limits<int>::max()));
         render->add_flag("--quiet", quiet, "No progress output");
+        render->add_flag("--dry-run", dry_run,
+                         "Check the scenario and --out, and state the cost (frames, beams, time and disk, estimated from its "
+                         "first, middle and last frames rendered in memory) without writing the dataset");
         render->add_flag("--resume", resume,
                          "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
         // For the tests only: not in --help.
@@ -112,6 +117,13 @@ struct RenderCommand {
             const bool frames_given = render->count("--frames") > 0;
             check_frames_fit_on_disk(frames_given ? frames : scenario.render.frames, frames_given ? std::to_string(frames) : file,
                                      frames_given ? "--frames" : "render.frames", out_dirs[i]);
+            if (dry_run) {
+                sensor_model::Scenario costed = scenario;
+                if (frames_given) costed.render.frames = frames;
+                if (render->count("--seed")) costed.render.seed = seed;
+                if (speaking) print_dry_run(costed, threads, out_dirs[i]);
+                continue;
+            }
             sensor_model::DatasetOptions options;
             options.out_dir = out_dirs[i];
             if (frames_given) options.frames = frames;
