@@ -129,7 +129,14 @@ py::dict render_to_directory(Scenario scenario, const std::filesystem::path& out
         py::gil_scoped_release release;
         summary = sensor_model::render_dataset(std::move(scenario), options);
     }
-    if (interrupt) throw std::move(*interrupt);
+    if (interrupt) {
+        // In place of the KeyboardInterrupt taken (and so cleared) above: one saying what to do next.
+        PyErr_SetString(PyExc_KeyboardInterrupt,
+                        ("stopped after " + std::to_string(summary.frames) + " frames; the finished frames are in " +
+                         summary.out_dir.string() + ".partial: render(..., out=DIR, resume=True) continues")
+                            .c_str());
+        throw py::error_already_set();
+    }
     return summary_dict(summary);
 }
 
