@@ -24,8 +24,9 @@ def draw(e):
     frames = [f["frame"] for f in per_frame]
     fig, (l2, iou) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     l2_values = [f["l2_m"] if f["l2_m"] is not None else float("nan") for f in per_frame]
-    mean_l2 = e["mean_l2_m"] if e["mean_l2_m"] is not None else float("nan")
-    l2.set_title(f"{e.get('method', '')}: mean L2 {mean_l2:.3f} m, mean IoU {e['mean_iou']:.3f}, "
+    # Never "nan" in the title: a target detected in no frame has no mean L2, and says so.
+    mean_l2 = f"mean L2 {e['mean_l2_m']:.3f} m" if e["mean_l2_m"] is not None else "no mean L2 (never detected)"
+    l2.set_title(f"{e.get('method', '')}: {mean_l2}, mean IoU {e['mean_iou']:.3f}, "
                  f"EAO {e['eao']:.3f}, {e['failures']} failures")
     l2.set_ylabel("L2 distance (m)")
     l2.grid(alpha=0.3)
