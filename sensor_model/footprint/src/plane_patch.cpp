@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ladarsim/core/units.h"
+
 namespace ladarsim::sensor_model {
 
 PlanePatch::PlanePatch(const FootprintContext& context, const CurvedPatch& curved) : context_(context), curved_(curved) {
+    // The equal-energy cells of an adaptive footprint (which has kPlaneQuadrature of them).
     std::vector<SubRay> nodes(kPlaneQuadrature);
-    context.shape.footprint().fixed(nodes);
+    Footprint(context.sensor.transmitter.divergence_mrad * kMrad, kPlaneQuadrature, context.settings.truncation).fixed(nodes);
     for (const SubRay& s : nodes) {
         quadrature_in_beam_.push_back(context.shape.in_beam(s.offset_x_rad, s.offset_y_rad));
         quadrature_x_.push_back(s.offset_x_rad);
