@@ -15,6 +15,7 @@ namespace {
 struct BenchmarkCommand {
     std::string dataset_dir, scores_json, scores_plot;
     DetectorOptions options;
+    bool force = false;
 
     CLI::App* add(CLI::App& app) {
         auto* cmd = app.add_subcommand("benchmark",
@@ -26,10 +27,12 @@ struct BenchmarkCommand {
                         "Write the scores: eval's (see `ladarsim eval --help`) plus eao, eao_bev, eao_interval, failures (and "
                         "the same under point_box), per frame supervised_iou and initialised");
         cmd->add_option("--plot", scores_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
+        cmd->add_flag("--force", force, "Replace the --json and --plot files even if ladarsim did not write them");
         return cmd;
     }
 
     int run() {
+        check_score_outputs(scores_json, scores_plot, force);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         report_scores(detect::benchmark_report(sequence, options.config(), options.target()), scores_json, scores_plot);
         return 0;

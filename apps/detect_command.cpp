@@ -10,6 +10,7 @@
 #include "detector_options.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/core/json_file.h"
+#include "ladarsim/dataset/dataset_directory.h"
 
 namespace ladarsim::apps {
 namespace {
@@ -17,6 +18,7 @@ namespace {
 struct DetectCommand {
     std::string dataset_dir, detections_file;
     DetectorOptions options;
+    bool force = false;
 
     CLI::App* add(CLI::App& app) {
         auto* detect_cmd = app.add_subcommand(
@@ -25,10 +27,14 @@ struct DetectCommand {
         detect_cmd->add_option("dir", dataset_dir, "Dataset directory (frames/*.pcd, background.pcd, ground_truth.json)")->required();
         options.add(*detect_cmd);
         detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
+        detect_cmd->add_flag("--force", force, "Replace the --out file even if ladarsim did not write it");
         return detect_cmd;
     }
 
     int run() {
+        if (detections_file.empty())
+            detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + options.method_name + ".json")).string();
+        check_replaceable(detections_file, "--out", force);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         // A rendered dataset always has background.pcd (0 points: nothing static in view); only a
         // recorded one has none.
@@ -44,8 +50,8 @@ struct DetectCommand {
             found += d["found"].get<bool>() && !d["predicted"].get<bool>();
             predicted += d["predicted"].get<bool>();
         }
-        if (detections_file.empty()) detections_file = (std::filesystem::path(dataset_dir) / ("detections-" + options.method_name + ".json")).string();
         write_json(detections_file, out);
+        record_owned(detections_file);
         std::printf("%s over %zu frames: %d detected, %d predicted, %zu without a box; wrote %s\n", options.method_name.c_str(),
                     detections.size(), found, predicted, detections.size() - found - predicted, detections_file.c_str());
         return 0;

@@ -13,6 +13,7 @@ namespace {
 
 struct EvalCommand {
     std::string dataset_dir, detections_file, eval_json, eval_plot;
+    bool force = false;
 
     CLI::App* add(CLI::App& app) {
         auto* eval_cmd = app.add_subcommand(
@@ -30,10 +31,12 @@ struct EvalCommand {
                              "precision; with tracks every target's mota, motp_m, id_switches, ap_centre (ground plane), "
                              "ap_centre_3d and, under tracking, the counts per class; per frame)");
         eval_cmd->add_option("--plot", eval_plot, "Per-frame L2 and IoU curves into this PNG (needs python3-matplotlib)");
+        eval_cmd->add_flag("--force", force, "Replace the --json and --plot files even if ladarsim did not write them");
         return eval_cmd;
     }
 
     int run() {
+        check_score_outputs(eval_json, eval_plot, force);
         const detect::Sequence sequence = detect::load_sequence(dataset_dir);
         report_scores(detect::evaluate_report(sequence, read_json(detections_file), detections_file), eval_json, eval_plot);
         return 0;

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/sensor_model/render/render_dataset.h"
@@ -19,6 +20,10 @@ int exit_code_of(const std::function<int()>& command, const MpiTeam* team) {
     } catch (const sensor_model::FrameFailure& e) {
         if (team && team->size() > 1) std::fprintf(stderr, "error: process %d of %d: %s\n", team->rank(), team->size(), e.what());
         else std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    } catch (const std::filesystem::filesystem_error& e) {
+        // The path and the system's reason, without the library's wording around them.
+        std::fprintf(stderr, "error: %s: %s\n", e.path1().string().c_str(), e.code().message().c_str());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

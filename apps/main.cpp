@@ -1,5 +1,6 @@
 // The ladarsim command line: builds the app from the subcommands (one file each, see command.h),
 // parses the arguments and runs the subcommand given, nothing more.
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -38,7 +39,15 @@ int main(int argc, char** argv) {
     apps::add_bench_command(app, exit_code);
 
     // Diagnostics on stderr, results on stdout.
-    app.set_version_flag("--version", "ladarsim " + software_json().at("version").get<std::string>());
+    const std::string version = "ladarsim " + software_json().at("version").get<std::string>();
+    app.set_version_flag("--version", version);
+    // After a subcommand too (`ladarsim render --version`), where CLI11 would first ask for the
+    // subcommand's required arguments.
+    for (int i = 1; i < argc; ++i)
+        if (std::string(argv[i]) == "--version") {
+            std::printf("%s\n", version.c_str());
+            return 0;
+        }
     // CLI11 says "A subcommand is required" for a misspelt one too: name it, and list the valid ones.
     if (const int code = apps::check_subcommand(app, argc, argv); code != 0) return code;
 

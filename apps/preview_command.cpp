@@ -3,6 +3,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "option_checks.h"
@@ -14,6 +15,7 @@ namespace {
 struct PreviewCommand {
     std::string dataset_dir;
     int frames = 4;
+    bool force = false;
 
     CLI::App* add(CLI::App& app) {
         auto* preview = app.add_subcommand(
@@ -23,12 +25,16 @@ struct PreviewCommand {
         preview->add_option("--frames", frames, "Frames to draw, evenly spaced")
             ->check(whole_number(1, std::numeric_limits<int>::max()))
             ->capture_default_str();
+        preview->add_flag("--force", force, "Replace DIR/preview.png even if ladarsim did not write it");
         return preview;
     }
 
     int run() {
         // "--" ends the script's options, so a directory named like one is still the directory.
-        run_plot_script("preview.py", {"--frames", std::to_string(frames), "--", dataset_dir});
+        std::vector<std::string> arguments = {"--frames", std::to_string(frames)};
+        if (force) arguments.push_back("--force");
+        arguments.insert(arguments.end(), {"--", dataset_dir});
+        run_plot_script("preview.py", arguments);
         return 0;
     }
 };

@@ -9,7 +9,8 @@ namespace ladarsim::apps {
 /// Whether stderr is a terminal.
 bool stderr_is_terminal();
 
-/// A progress callback (done, total) printing "<what> done/total": on a terminal one line updated
+/// A progress callback (done, total) printing "<what> done/total" and, from the second call on, the
+/// time left at the pace so far (", about 3 min left"): on a terminal one line updated
 /// in place and ended at the last; elsewhere a whole line at the first, at each further tenth of
 /// the total and at the last.
 std::function<void(int, int)> progress_lines(std::string what);

@@ -13,10 +13,13 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "dry_run.h"
+#include "frame_budget.h"
 #include "progress.h"
 #include "option_checks.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame.h"
+#include "ladarsim/core/input_error.h"
 #include "stop_signal.h"
 #include "ladarsim/sensor_model/render/render_dataset.h"
 #include "ladarsim/sensor_model/render/scenario.h"
@@ -55,6 +58,7 @@ struct RenderCommand {
     std::uint64_t seed = 0;
     bool quiet = false;
     bool resume = false;
+    bool dry_run = false;
     CLI::App* render = nullptr;
 
     explicit RenderCommand(const std::unique_ptr<MpiTeam>& team) : team(team) {}
@@ -69,27 +73,60 @@ struct RenderCommand {
                            "one directory per scenario inside it, named after the file")
             ->required();
         render->add_option("--frames", frames, "Number of frames (default: the scenario's render.frames)")
-            ->check(whole_number(1, std::numeric_limits<int>::max()));
+            ->check(whole_number(1, sensor_model::kMaxFrames));
         render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)")
             ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
-        render->add_option("--threads", threads, "Worker threads (default: all cores); output does not depend on it")
+        render->add_option("--threads", threads, "Worker threads (0, the default: all cores); output does not depend on it")
             ->check(whole_number(0, std::numeric_limits<int>::max()));
         render->add_flag("--quiet", quiet, "No progress output");
+        render->add_flag("--dry-run", dry_run,
+                         "Check the scenario and --out, and state the cost (frames, beams, time and disk, estimated from its "
+                         "first, middle and last frames rendered in memory) without writing the dataset");
         render->add_flag("--resume", resume,
                          "Continue a run interrupted by Ctrl-C or SIGTERM (its finished frames are kept in DIR.partial)");
-        render->add_option("--fail-at-frame", fail_at_frame, "For testing: make this frame fail");
+        // For the tests only: not in --help.
+        render->add_option("--fail-at-frame", fail_at_frame, "For testing: make this frame fail")->group("");
         return render;
     }
 
     int run() {
         if (quiet || (team && team->rank() != 0)) spdlog::set_level(spdlog::level::warn);
         const bool speaking = !team || team->rank() == 0;
+        // Several scenarios: one directory each, named after the file; two of one name would
+        // overwrite each other, so they are refused before anything is rendered.
+        std::vector<std::filesystem::path> out_dirs;
         for (const std::string& file : scenario_files) {
+            const std::filesystem::path dir = scenario_files.size() == 1 ? std::filesystem::path(out_dir)
+                                                                          : std::filesystem::path(out_dir) / std::filesystem::path(file).stem();
+            if (const auto same = std::find(out_dirs.begin(), out_dirs.end(), dir); same != out_dirs.end())
+                throw InputError(file, "scenario",
+                                 "renders into " + dir.string() + ", as " + scenario_files[same - out_dirs.begin()] +
+                                     " does (one directory per scenario file name); give each scenario file its own name");
+            out_dirs.push_back(dir);
+        }
+        for (std::size_t i = 0; i < scenario_files.size(); ++i) {
+            const std::string& file = scenario_files[i];
+            std::signal(SIGINT, request_stop);
+            std::signal(SIGTERM, request_stop);
+            // Under mpirun the ranks stop together after their frames (a rank ending alone would
+            // leave the others waiting).
+            if (!team)
+                stop_within_a_second("\ninterrupted; the finished frames are in " + out_dirs[i].string() +
+                                     ".partial; continue with --resume\n");
             const sensor_model::Scenario scenario = sensor_model::load_scenario(file);
+            const bool frames_given = render->count("--frames") > 0;
+            check_frames_fit_on_disk(frames_given ? frames : scenario.render.frames, frames_given ? std::to_string(frames) : file,
+                                     frames_given ? "--frames" : "render.frames", out_dirs[i]);
+            if (dry_run) {
+                sensor_model::Scenario costed = scenario;
+                if (frames_given) costed.render.frames = frames;
+                if (render->count("--seed")) costed.render.seed = seed;
+                if (speaking) print_dry_run(costed, threads, out_dirs[i]);
+                continue;
+            }
             sensor_model::DatasetOptions options;
-            options.out_dir = scenario_files.size() == 1 ? std::filesystem::path(out_dir)
-                                                         : std::filesystem::path(out_dir) / std::filesystem::path(file).stem();
-            if (render->count("--frames")) options.frames = frames;
+            options.out_dir = out_dirs[i];
+            if (frames_given) options.frames = frames;
             if (render->count("--seed")) options.seed = seed;
             // The ranks on one machine share its cores.
             options.threads = threads > 0 || !team
@@ -99,10 +136,9 @@ struct RenderCommand {
             options.stop = &g_stop;
             options.team = team.get();
             options.fail_at_frame = fail_at_frame;
-            std::signal(SIGINT, request_stop);
-            std::signal(SIGTERM, request_stop);
             if (!quiet && speaking) options.progress = progress_lines("frame");
             const auto summary = sensor_model::render_dataset(scenario, options);
+            acknowledge_stop();
             if (summary.interrupted) {
                 if (speaking)
                     std::fprintf(stderr, "%sinterrupted after %d frames; finished frames are in %s.partial; continue with --resume\n",

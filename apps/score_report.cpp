@@ -1,17 +1,25 @@
 #include "score_report.h"
 
-#include <cmath>
 #include <cstdio>
 #include <map>
+#include <string>
 
 #include "ladarsim/core/json_file.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "plot_script.h"
 
 namespace ladarsim::apps {
 
 namespace {
 
-double figure(const nlohmann::json& v) { return v.is_null() ? NAN : v.get<double>(); }
+/// `v` to three decimals and `unit`, or `none` (saying why there is no figure) when it is null:
+/// never "nan".
+std::string figure(const nlohmann::json& v, const std::string& unit, const std::string& none) {
+    if (v.is_null()) return none;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", v.get<double>());
+    return text + unit;
+}
 
 /// The measures scoring.h names, in words.
 std::string measures_in_words(const nlohmann::json& measures) {
@@ -27,22 +35,34 @@ std::string measures_in_words(const nlohmann::json& measures) {
 
 }  // namespace
 
+void check_score_outputs(const std::string& json_path, const std::string& plot_path, bool force) {
+    if (!json_path.empty()) check_replaceable(json_path, "--json", force);
+    if (!plot_path.empty()) check_replaceable(plot_path, "--plot", force);
+}
+
 void report_scores(const nlohmann::json& scores, const std::string& json_path, const std::string& plot_path) {
     const std::string method = scores["method"].get<std::string>();
     const auto& points = scores["point_box"];
-    std::printf("%s: %d frames, mean L2 %.3f m, %d frames lost (no overlap in 3-D)\n"
+    const std::string l2 = scores["mean_l2_m"].is_null() ? "no mean L2 (the target was detected in no frame)"
+                                                         : "mean L2 " + figure(scores["mean_l2_m"], " m", "");
+    std::printf("%s: %d frames, %s, %d frames lost (no overlap in 3-D)\n"
                 "  sensor-aware box: mean IoU %.3f (bird's-eye %.3f)\n"
                 "  box around the points: mean IoU %.3f (bird's-eye %.3f)\n",
-                method.empty() ? "detections" : method.c_str(), scores["frames"].get<int>(), figure(scores["mean_l2_m"]),
+                method.empty() ? "detections" : method.c_str(), scores["frames"].get<int>(),
+                l2.c_str(),
                 scores["frames_lost"].get<int>(), scores["mean_iou"].get<double>(), scores["mean_iou_bev"].get<double>(),
                 points["mean_iou"].get<double>(), points["mean_iou_bev"].get<double>());
-    if (scores.contains("tracking")) {
+    if (scores.contains("tracking") && scores["mota"].is_null()) {
+        std::printf("  every target: nothing to score (no drone, bird or aircraft sighting in the ground truth)\n");
+    } else if (scores.contains("tracking")) {
         const auto& tracking = scores["tracking"];
-        std::printf("  every target (%d drone, bird and aircraft sightings): MOTA %.3f, MOTP %.3f m, %d ID switches, "
-                    "%d misses, %d false positives; centre-distance AP %.3f on the ground plane (%.3f in 3-D)\n",
-                    tracking["objects"].get<int>(), figure(scores["mota"]), figure(scores["motp_m"]), scores["id_switches"].get<int>(),
-                    tracking["misses"].get<int>(), tracking["false_positives"].get<int>(), figure(scores["ap_centre"]),
-                    figure(scores["ap_centre_3d"]));
+        std::printf("  every target (%d drone, bird and aircraft sightings): MOTA %.3f, MOTP %s, %d ID switches, "
+                    "%d misses, %d false positives; centre-distance AP %s on the ground plane (%s in 3-D)\n",
+                    tracking["objects"].get<int>(), scores["mota"].get<double>(),
+                    figure(scores["motp_m"], " m", "none (nothing matched)").c_str(), scores["id_switches"].get<int>(),
+                    tracking["misses"].get<int>(), tracking["false_positives"].get<int>(),
+                    figure(scores["ap_centre"], "", "none (no track)").c_str(),
+                    figure(scores["ap_centre_3d"], "", "none").c_str());
     }
     if (scores.contains("eao")) {
         const auto& interval = scores["eao_interval"];
@@ -56,8 +76,14 @@ void report_scores(const nlohmann::json& scores, const std::string& json_path, c
         std::printf(" (the file supports these; EAO needs the tracker in the loop: `ladarsim benchmark DIR --method M`%s)",
                     scores.contains("ignored") ? ", and the file's supervised block is ignored" : "");
     std::printf("\n");
-    if (!json_path.empty()) write_json(json_path, scores);
-    if (!plot_path.empty()) plot_figures("plot_eval.py", scores, json_path, plot_path);
+    if (!json_path.empty()) {
+        write_json(json_path, scores);
+        record_owned(json_path);
+    }
+    if (!plot_path.empty()) {
+        plot_figures("plot_eval.py", scores, json_path, plot_path);
+        record_owned(plot_path);
+    }
 }
 
 }  // namespace ladarsim::apps

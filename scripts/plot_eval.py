@@ -25,9 +25,10 @@ def draw(e):
     frames = [f["frame"] for f in per_frame]
     fig, (l2, iou) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     l2_values = [f["l2_m"] if f["l2_m"] is not None else float("nan") for f in per_frame]
-    mean_l2 = e["mean_l2_m"] if e["mean_l2_m"] is not None else float("nan")
+    # Never "nan" in the title: a target detected in no frame has no mean L2, and says so.
+    mean_l2 = f"mean L2 {e['mean_l2_m']:.3f} m" if e["mean_l2_m"] is not None else "no mean L2 (never detected)"
     supervised_run = "eao" in e
-    title = f"{e.get('method', '')}: mean L2 {mean_l2:.3f} m, mean IoU {e['mean_iou']:.3f}"
+    title = f"{e.get('method', '')}: {mean_l2}, mean IoU {e['mean_iou']:.3f}"
     if supervised_run:
         title += f", EAO {e['eao']:.3f}, {e['failures']} failures"
     l2.set_title(title)

@@ -153,16 +153,49 @@ def draw(dataset, frames=4):
     return fig
 
 
+OWNED_LIST = ".ladarsim-owned"  # what ladarsim wrote in a dataset: see README, "Using it"
+
+
+def owned_entries(directory):
+    """The entries a dataset's owned list names, or None when the directory has none."""
+    try:
+        with open(os.path.join(directory, OWNED_LIST)) as f:
+            return [line.rstrip("\n") for line in f if line.strip() and not line.startswith("#")]
+    except FileNotFoundError:
+        return None
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dataset")
     parser.add_argument("--frames", type=int, default=4, help="frames to draw, evenly spaced (default 4)")
+    parser.add_argument("--force", action="store_true", help="replace DIR/preview.png even if ladarsim did not write it")
     args = parser.parse_args()
-    fig = draw(args.dataset, args.frames)
-    out = os.path.join(args.dataset, "preview.png")
+    dataset = args.dataset
+    # One line in the user's terms, never a traceback.
+    if not os.path.isdir(dataset):
+        sys.exit(f"error: {dataset}: no such dataset directory")
+    if not os.path.exists(os.path.join(dataset, "ground_truth.json")):
+        sys.exit(f"error: {dataset}: no ground_truth.json: preview draws a rendered dataset (a recorded one has no "
+                 "ground truth; `ladarsim view` shows it)")
+    out = os.path.join(dataset, "preview.png")
+    owned = owned_entries(dataset)
+    if os.path.exists(out) and not args.force and (owned is None or "preview.png" not in owned):
+        sys.exit(f"error: {out}: exists and ladarsim did not write it; refusing to replace it (--force replaces it)")
+    if not os.access(dataset, os.W_OK):
+        sys.exit(f"error: {dataset}: cannot write preview.png there (the directory is read-only)")
+    fig = draw(dataset, args.frames)
     tmp = out + ".tmp.png"
-    fig.savefig(tmp, dpi=90)
-    os.replace(tmp, out)
+    try:
+        fig.savefig(tmp, dpi=90)
+        os.replace(tmp, out)
+        if owned is not None and "preview.png" not in owned:
+            listed = os.path.join(dataset, OWNED_LIST)
+            with open(listed + ".tmp", "w") as f:
+                f.write(open(listed).read() + "preview.png\n")
+            os.replace(listed + ".tmp", listed)
+    except OSError as e:
+        sys.exit(f"error: {e.filename or out}: cannot write: {e.strerror}")
     print(f"wrote {out}")
 
 

@@ -1,5 +1,6 @@
 #include "ladarsim/core/json_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -9,6 +10,29 @@ namespace ladarsim {
 
 namespace {
 const char* type_name(const nlohmann::json& j) { return j.type_name(); }
+
+/// Levenshtein distance: letters inserted, deleted or replaced.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+/// Whether `typo` is likely a misspelling of `key`: one letter missing, extra or wrong. Only one:
+/// keys that are two apart are often both valid ("beams_az", "beams_el"), and short keys ("x",
+/// "y") are never taken for each other.
+bool misspells(const std::string& typo, const std::string& key) {
+    return key.size() >= 5 && edit_distance(typo, key) == 1;
+}
 }  // namespace
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string file, std::string path)
@@ -31,7 +55,13 @@ void JsonFields::fail(const std::string& key, const std::string& problem) const 
 
 const nlohmann::json& JsonFields::get(const std::string& key) {
     auto it = object_.find(key);
-    if (it == object_.end()) fail(key, "required field is missing");
+    if (it == object_.end()) {
+        // A misspelt required key: the typo is what the user wrote, so name it.
+        for (const auto& item : object_.items())
+            if (!used_.count(item.key()) && misspells(item.key(), key))
+                fail(item.key(), "unknown key; did you mean \"" + key + "\"?");
+        fail(key, "required field is missing");
+    }
     used_.insert(key);
     return *it;
 }

@@ -1,12 +1,19 @@
 #include "ladarsim/dataset/dataset_directory.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <regex>
 
-#include "ladarsim/dataset/frame_io.h"
+#include "ladarsim/core/atomic_file.h"
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/dataset/frame_io.h"
 
 namespace ladarsim {
 
@@ -29,14 +36,29 @@ std::string joined(const std::vector<std::string>& names) {
     return s;
 }
 
-/// The user's entries inside ladarsim's own directories of `out`, as relative paths, sorted; a
-/// directory of the user's is named, not entered.
-std::vector<std::string> foreign_entries(const std::filesystem::path& out, const OutputLayout& layout) {
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+void write_owned_entries(const std::filesystem::path& dir, std::vector<std::string> names) {
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    std::string text = "# ladarsim wrote these entries of this directory: a new run replaces or deletes these and nothing else\n";
+    for (const auto& n : names) text += n + "\n";
+    AtomicFile file(dir / kOwnedList);
+    file.stream() << text;
+    file.commit();
+}
+
+/// The user's entries inside ladarsim's own directories of `out` (those on its owned list), as
+/// relative paths, sorted; a directory of the user's is named, not entered.
+std::vector<std::string> foreign_entries(const std::filesystem::path& out, const std::vector<std::string>& owned,
+                                         const OutputLayout& layout) {
     std::vector<std::string> foreign;
     std::error_code ec;
     std::vector<std::string> own_dirs;
-    for (const auto& e : std::filesystem::directory_iterator(out))
-        if (e.is_directory(ec) && layout.is_own_entry(e.path().filename().string())) own_dirs.push_back(e.path().filename().string());
+    for (const auto& name : owned)
+        if (std::filesystem::is_directory(out / name, ec) && layout.is_own_entry(name)) own_dirs.push_back(name);
     while (!own_dirs.empty()) {
         const std::string dir = own_dirs.back();
         own_dirs.pop_back();
@@ -53,9 +75,37 @@ std::vector<std::string> foreign_entries(const std::filesystem::path& out, const
 }  // namespace
 
 bool is_dataset_entry(const std::string& name) {
-    static const std::regex derived(R"((detections|eval)-.*\.json|preview\.png)");
-    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd" ||
-           std::regex_match(name, derived);
+    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd";
+}
+
+std::optional<std::vector<std::string>> owned_entries(const std::filesystem::path& dir) {
+    std::ifstream in(dir / kOwnedList);
+    if (!in) return std::nullopt;
+    std::vector<std::string> names;
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty() && line[0] != '#') names.push_back(line);
+    return names;
+}
+
+void check_replaceable(const std::filesystem::path& file, const std::string& field, bool force) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw InputError(file.string(), field, "is a directory; give the name of a file inside it");
+    const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
+    if (!std::filesystem::is_directory(dir, ec))
+        throw InputError(file.string(), field, "its directory " + dir.string() + " does not exist");
+    if (force || !std::filesystem::exists(file, ec)) return;
+    const auto owned = owned_entries(dir);
+    if (owned && contains(*owned, file.filename().string())) return;
+    throw InputError(file.string(), field, "exists and ladarsim did not write it; refusing to replace it (--force replaces it)");
+}
+
+void record_owned(const std::filesystem::path& file) {
+    const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
+    auto owned = owned_entries(dir);
+    if (!owned || contains(*owned, file.filename().string())) return;
+    owned->push_back(file.filename().string());
+    write_owned_entries(dir, *owned);
 }
 
 bool is_mount_point(const std::filesystem::path& dir) {
@@ -65,7 +115,7 @@ bool is_mount_point(const std::filesystem::path& dir) {
 }
 
 const OutputLayout& dataset_layout() {
-    static const OutputLayout layout{"dataset", "manifest.json", is_dataset_entry, [](const std::string& relative) {
+    static const OutputLayout layout{"dataset", is_dataset_entry, [](const std::string& relative) {
                                          const auto path = std::filesystem::path(relative);
                                          return path.parent_path() == "frames" && is_frame_file(path.filename().string());
                                      }};
@@ -91,11 +141,24 @@ std::filesystem::path checked_output_dir(const std::filesystem::path& requested,
                          "is a mount point: the " + layout.what + " is staged beside it in " + out.filename().string() +
                              ".partial, on another file system, and could not be moved in; give a directory inside it, "
                              "e.g. --out " + (out / layout.what).string());
-    if (!std::filesystem::is_empty(out, ec) && !std::filesystem::exists(out / layout.marker, ec))
+    const auto owned = owned_entries(out);
+    if (!owned) {
+        if (std::filesystem::is_empty(out, ec)) return out;
         throw InputError(out.string(), "--out",
-                         "is a non-empty directory without the " + layout.marker + " ladarsim writes in every " + layout.what +
-                             "; refusing to replace it");
-    if (const auto foreign = foreign_entries(out, layout); !foreign.empty()) {
+                         "is a non-empty directory without the " + std::string(kOwnedList) + " list ladarsim writes in every " +
+                             layout.what + "; refusing to replace it");
+    }
+    std::vector<std::string> clashing;
+    for (const auto& e : std::filesystem::directory_iterator(out)) {
+        const std::string name = e.path().filename().string();
+        if (layout.is_own_entry(name) && !contains(*owned, name)) clashing.push_back(entry_name(e));
+    }
+    std::sort(clashing.begin(), clashing.end());
+    if (!clashing.empty())
+        throw InputError(out.string(), "--out",
+                         "holds " + joined(clashing) + ", which ladarsim did not write (not in " + kOwnedList + ") and a new " +
+                             layout.what + " would replace; move them out first");
+    if (const auto foreign = foreign_entries(out, *owned, layout); !foreign.empty()) {
         std::vector<std::string> dirs;
         for (const auto& f : foreign) dirs.push_back(f.substr(0, f.find('/') + 1));
         dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
@@ -112,31 +175,60 @@ std::filesystem::path checked_dataset_dir(const std::filesystem::path& requested
 
 std::filesystem::path staging_dir(const std::filesystem::path& out) { return out.string() + ".partial"; }
 
-std::vector<std::string> swap_in_output(const std::filesystem::path& staging, const std::filesystem::path& out,
-                                        const OutputLayout& layout) {
-    const std::filesystem::path old = out.string() + ".old";
-    std::filesystem::remove_all(old);
+StagingDir::StagingDir(const std::filesystem::path& out) : dir_(staging_dir(out)) {
+    std::filesystem::create_directories(dir_);
+    fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0) throw std::runtime_error(dir_.string() + ": cannot open: " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        ::close(fd_);
+        throw InputError(out.string(), "--out",
+                         "another ladarsim run is writing there (" + dir_.filename().string() +
+                             " is locked); wait for it to finish or give another --out");
+    }
+}
+
+StagingDir::~StagingDir() { ::close(fd_); }
+
+void StagingDir::clear() const {
+    for (const auto& e : std::filesystem::directory_iterator(dir_)) std::filesystem::remove_all(e.path());
+}
+
+std::vector<std::string> swap_in_output(const std::filesystem::path& staging, const std::filesystem::path& out) {
+    std::vector<std::string> staged;
+    for (const auto& e : std::filesystem::directory_iterator(staging))
+        if (e.path().filename() != kOwnedList) staged.push_back(e.path().filename().string());
     if (!std::filesystem::exists(out)) {
+        write_owned_entries(staging, staged);
         std::filesystem::rename(staging, out);
         return {};
     }
+    const std::vector<std::string> owned = owned_entries(out).value_or(std::vector<std::string>{});
+    for (const auto& name : staged)
+        if (std::filesystem::exists(out / name) && !contains(owned, name))
+            throw InputError(out.string(), "--out", "holds " + name + ", which ladarsim did not write; refusing to replace it");
+    // Listed before they move in, so that an interrupted swap leaves every entry of ours listed.
+    std::vector<std::string> listed = owned;
+    listed.insert(listed.end(), staged.begin(), staged.end());
+    write_owned_entries(out, listed);
     // Entry by entry, so that `out` itself (a mount's or link's target, the current directory)
-    // stays, and so do the user's files in it.
-    std::vector<std::string> kept;
+    // stays, and so do the user's files in it. The replaced entries wait inside the staging
+    // directory, which goes last.
+    const std::filesystem::path old = staging / ".replaced";
     std::filesystem::create_directory(old);
-    for (const auto& e : std::filesystem::directory_iterator(out)) {
-        if (layout.is_own_entry(e.path().filename().string())) std::filesystem::rename(e.path(), old / e.path().filename());
-        else kept.push_back(entry_name(e));
-    }
-    for (const auto& e : std::filesystem::directory_iterator(staging)) std::filesystem::rename(e.path(), out / e.path().filename());
+    for (const auto& name : owned)
+        if (std::filesystem::exists(std::filesystem::symlink_status(out / name))) std::filesystem::rename(out / name, old / name);
+    for (const auto& name : staged) std::filesystem::rename(staging / name, out / name);
+    write_owned_entries(out, staged);
     std::filesystem::remove_all(staging);
-    std::filesystem::remove_all(old);
+    std::vector<std::string> kept;
+    for (const auto& e : std::filesystem::directory_iterator(out))
+        if (e.path().filename() != kOwnedList && !contains(staged, e.path().filename().string())) kept.push_back(entry_name(e));
     std::sort(kept.begin(), kept.end());
     return kept;
 }
 
 std::vector<std::string> swap_in_dataset(const std::filesystem::path& staging, const std::filesystem::path& out) {
-    return swap_in_output(staging, out, dataset_layout());
+    return swap_in_output(staging, out);
 }
 
 std::string kept_files_note(const std::vector<std::string>& kept, const std::filesystem::path& out) {
@@ -147,8 +239,13 @@ std::string kept_files_note(const std::vector<std::string>& kept, const std::fil
 std::vector<std::string> write_recorded_dataset(const std::vector<Frame>& frames, const nlohmann::json& sensor,
                                                 const std::filesystem::path& out_dir, const std::filesystem::path& source) {
     const std::filesystem::path out = checked_dataset_dir(out_dir);
-    const std::filesystem::path staging = staging_dir(out);
-    std::filesystem::remove_all(staging);
+    if (const auto owned = owned_entries(out); owned && std::find(owned->begin(), owned->end(), "ground_truth.json") != owned->end())
+        throw InputError(out.string(), "--out",
+                         "holds a rendered dataset, whose ground truth and initial map a recording would replace; import into "
+                         "another directory");
+    const StagingDir staging_lock(out);
+    staging_lock.clear();
+    const std::filesystem::path& staging = staging_lock.path();
     std::filesystem::create_directories(staging / "frames");
     nlohmann::json log = nlohmann::json::array();
     for (const Frame& f : frames) {

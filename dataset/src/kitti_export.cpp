@@ -181,8 +181,9 @@ KittiExportSummary export_frames(const std::vector<SourceFrames>& sources, const
     const float largest = largest_intensity(pcds, progress);
     summary.intensity_scale = largest > 0.0f ? largest : 1.0f;
 
-    const std::filesystem::path staging = staging_dir(summary.out);
-    std::filesystem::remove_all(staging);
+    const StagingDir staging_lock(summary.out);
+    staging_lock.clear();
+    const std::filesystem::path& staging = staging_lock.path();
     for (const char* d : {"velodyne", "label_2", "calib"}) std::filesystem::create_directories(staging / "training" / d);
     nlohmann::json frames = nlohmann::json::array();
     std::map<std::string, std::string> image_sets;
@@ -221,7 +222,7 @@ KittiExportSummary export_frames(const std::vector<SourceFrames>& sources, const
     }
     summary.frames = static_cast<int>(k);
     write_json(staging / "ladarsim_export.json", export_record(std::move(origin), summary.intensity_scale, options, std::move(frames)));
-    summary.kept = swap_in_output(staging, summary.out, kitti_layout());
+    summary.kept = swap_in_output(staging, summary.out);
     return summary;
 }
 
@@ -319,7 +320,7 @@ const std::string& kitti_calib_text() {
 
 const OutputLayout& kitti_layout() {
     static const OutputLayout layout{
-        "export", "ladarsim_export.json",
+        "export",
         [](const std::string& name) { return name == "training" || name == "ImageSets" || name == "ladarsim_export.json"; },
         [](const std::string& relative) {
             static const std::regex own(

@@ -1,5 +1,6 @@
 #include "ladarsim/dataset/pcd_file.h"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -59,6 +60,11 @@ struct PcdHeader {
     std::size_t data_offset = 0;  ///< first byte after the DATA line
 };
 
+/// Whether `word` is text a person could read in a message (a garbage file's header is not).
+bool is_text(const std::string& word) {
+    return std::all_of(word.begin(), word.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+}
+
 class HeaderParser {
 public:
     HeaderParser(std::string file, const std::string& bytes) : file_(std::move(file)), bytes_(bytes) {}
@@ -93,7 +99,8 @@ private:
         std::uint64_t value = 0;
         const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
         if (ec != std::errc() || end != word.data() + word.size()) {
-            fail(keyword, "expected a whole number, found '" + word + "'");
+            fail(keyword, is_text(word) ? "expected a whole number, found '" + word.substr(0, 32) + "'"
+                                        : "expected a whole number, found binary data: not a PCD point cloud");
         }
         return value;
     }
@@ -131,7 +138,8 @@ private:
         } else if (keyword == "VIEWPOINT") {
             // The cloud's points are read as they are; where it was taken from does not move them.
         } else {
-            fail("header", "unknown keyword '" + keyword.substr(0, 32) + "'");
+            fail("header", is_text(keyword) ? "unknown keyword '" + keyword.substr(0, 32) + "'"
+                                            : "binary data where the header should be: not a PCD point cloud");
         }
     }
 

@@ -264,8 +264,14 @@ DetectionsFile read_detections_file(const Sequence& s, const nlohmann::json& rep
     const auto target = top.has("target") ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(
                                                 top.integer("target", 1, std::numeric_limits<std::uint32_t>::max())))
                                           : default_target(s);
-    if (!target) throw InputError(file, "target", "missing, and the ground truth holds no drone to default to");
-    check_target(s, *target, s.directory / "ground_truth.json");
+    const std::string truth_file = (s.directory / "ground_truth.json").string();
+    if (!target)
+        throw InputError(file, "target",
+                         s.truth.empty() ? "none: nothing to score, the dataset has no ground truth (a recorded dataset)"
+                                         : "none: nothing to score, the ground truth has no drone to take as the target; name one "
+                                           "of its objects (" + truth_file + ") in the file's \"target\", as `ladarsim detect "
+                                           "--target ID` does");
+    check_target(s, *target, truth_file);
     out.target = *target;
     out.detections = read_detections(s, top.array("detections"), file);
     if (top.has("tracks")) out.tracks = read_tracks(s, top.array("tracks"), file);
@@ -294,7 +300,10 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
 nlohmann::json benchmark_report(const Sequence& s, const DetectorConfig& config, std::optional<std::uint32_t> target) {
     if (!target) target = default_target(s);
     const std::string truth_file = (s.directory / "ground_truth.json").string();
-    if (!target) throw InputError(truth_file, "--target", "no drone in the ground truth to default to: name the target to benchmark");
+    if (!target)
+        throw InputError(truth_file, "--target",
+                         s.truth.empty() ? "no ground truth (a recorded dataset): nothing to score against"
+                                         : "no drone in the ground truth to default to: name the target to benchmark");
     nlohmann::json scores = evaluate_report(s, detection_report(s, config, target), "(" + to_string(config.method) + " run)");
     const SupervisedRuns runs = supervised_runs(s, config, *target);
     const auto interval = vot_length_interval({static_cast<int>(s.frames.size())});

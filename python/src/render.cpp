@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -128,21 +129,43 @@ py::dict render_to_directory(Scenario scenario, const std::filesystem::path& out
         py::gil_scoped_release release;
         summary = sensor_model::render_dataset(std::move(scenario), options);
     }
-    if (interrupt) throw std::move(*interrupt);
+    if (interrupt) {
+        // In place of the KeyboardInterrupt taken (and so cleared) above: one saying what to do next.
+        PyErr_SetString(PyExc_KeyboardInterrupt,
+                        ("stopped after " + std::to_string(summary.frames) + " frames; the finished frames are in " +
+                         summary.out_dir.string() + ".partial: render(..., out=DIR, resume=True) continues")
+                            .c_str());
+        throw py::error_already_set();
+    }
     return summary_dict(summary);
 }
 
-py::object render(const py::handle& scenario, std::optional<int> frames, std::optional<std::uint64_t> seed,
-                  std::optional<int> threads, const py::object& base_dir, std::optional<std::filesystem::path> out, bool resume) {
-    if (frames && *frames < 1) throw InputError(kCaller, "frames", "must be at least 1");
-    if (threads && *threads < 0) throw InputError(kCaller, "threads", "must not be negative");
+/// An optional whole-number argument from `lo` to `hi`, or an InputError naming it: pybind11's own
+/// conversion of seed=-1 or frames="3" says only "incompatible function arguments".
+std::optional<std::uint64_t> whole_number(const py::object& value, const char* name, std::uint64_t lo, std::uint64_t hi) {
+    if (value.is_none()) return std::nullopt;
+    const std::string range = "a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
+    if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+        throw InputError(kCaller, name, "expected " + range + ", found " + std::string(py::repr(value)));
+    if (value < py::int_(lo) || value > py::int_(hi))
+        throw InputError(kCaller, name, std::string(py::repr(value)) + " is not " + range);
+    return value.cast<std::uint64_t>();
+}
+
+py::object render(const py::handle& scenario, const py::object& frames_arg, const py::object& seed_arg,
+                  const py::object& threads_arg, const py::object& base_dir, std::optional<std::filesystem::path> out, bool resume) {
+    const auto whole_frames = whole_number(frames_arg, "frames", 1, sensor_model::kMaxFrames);
+    const std::optional<int> frames = whole_frames ? std::optional<int>(static_cast<int>(*whole_frames)) : std::nullopt;
+    const std::optional<std::uint64_t> seed = whole_number(seed_arg, "seed", 0, std::numeric_limits<std::uint64_t>::max());
+    const auto whole_threads = whole_number(threads_arg, "threads", 0, std::numeric_limits<int>::max());
+    const int threads = static_cast<int>(whole_threads.value_or(0));  // 0: every core
     if (resume && !out) throw InputError(kCaller, "resume", "continues a render into a directory: give out=DIR");
     Scenario s = scenario_of(scenario, base_dir);
-    if (out) return render_to_directory(std::move(s), *out, frames, seed, threads.value_or(0), resume);
+    if (out) return render_to_directory(std::move(s), *out, frames, seed, threads, resume);
     // As render_dataset applies them, before the renderer is built.
     if (frames) s.render.frames = *frames;
     if (seed) s.render.seed = *seed;
-    return py::cast(FrameStream(std::move(s), threads.value_or(0)));
+    return py::cast(FrameStream(std::move(s), threads));
 }
 
 }  // namespace

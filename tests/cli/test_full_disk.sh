@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A full disk: the error names the file that could not be written and the system's reason, and
-# the partial dataset is left for --resume. Needs a private mount namespace (unshare) for a small
-# tmpfs.
+# the partial dataset is left for --resume, which the error says, and that it holds the space.
+# Needs a private mount namespace (unshare) for a small tmpfs.
 # Usage: test_full_disk.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
 good="$src/tests/cli/small.json"
@@ -18,5 +18,6 @@ grep -q "^rc=1$" "$work/stdout" || fail "a full disk gave $(grep rc= "$work/stdo
 grep -q "No space left on device" "$work/stderr" || fail "the system's reason is not given: $(cat "$work/stderr")"
 grep -Eq "out\.partial/[^ ]+: " "$work/stderr" || fail "the file is not named: $(cat "$work/stderr")"
 grep -q "^out.partial$" "$work/stdout" || fail "the partial dataset was not left: $(cat "$work/stdout")"
+grep -q -- "--resume, or delete it to free its space" "$work/stderr" || fail "nothing says the partial dataset holds the space or that --resume continues: $(cat "$work/stderr")"
 
 if [ "$failures" -eq 0 ]; then echo "full disk: all checks passed"; else echo "full disk: $failures failed"; exit 1; fi

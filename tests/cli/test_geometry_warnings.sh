@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Geometry that cannot be what the user meant is warned about once, before rendering: the sensor
 # inside an object (whose walls then lie within the receiver's minimum range and return nothing,
-# not returns at 1.65 mm), a cue the gimbal cannot reach (parked at its 175 deg limit), a target
+# not returns at 1.65 mm, or farther, met in all six directions), a cue the gimbal cannot reach (parked at its 175 deg limit), a target
 # beyond max_range_m. A sensible scenario gets no warning.
 # Usage: test_geometry_warnings.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
@@ -51,6 +51,12 @@ def column(name):
 close = [r for r, s in zip(column("range_m"), column("source")) if s == 0 and r < 5.0]
 sys.exit(1 if close else 0)
 PY
+
+# Deep inside the building, its walls 6 to 10 m away: warned as well (before, only the gimbal
+# was, and the inside walls' returns followed).
+scenario deep "[160, 0, 7]" "[200, 1, 4]"
+"$bin" render "$work/deep.json" --out "$work/out-deep" --frames 1 >/dev/null 2>"$work/stderr" || fail "deep: render failed: $(cat "$work/stderr")"
+grep "^warning" "$work/stderr" | grep -q "inside object 1 (building" || fail "deep: the sensor inside the building is not warned about: $(cat "$work/stderr")"
 
 # The cue behind the sensor: the gimbal's +-175 deg cannot reach 180 deg.
 scenario behind "[0, 0, 2]" "[-120, 0, 4]"

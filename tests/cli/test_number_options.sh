@@ -20,9 +20,9 @@ expect_bad() {
   [ ! -e "$work/out" ] || fail "$option $value: an output was written"
   rm -rf "$work/out"
 }
-expect_bad --frames 0 "from 1 to 2147483647" render "$good" --out "$work/out"
-expect_bad --frames abc "from 1 to 2147483647" render "$good" --out "$work/out"
-expect_bad --frames 2.5 "from 1 to 2147483647" render "$good" --out "$work/out"
+expect_bad --frames 0 "from 1 to 10000000" render "$good" --out "$work/out"
+expect_bad --frames abc "from 1 to 10000000" render "$good" --out "$work/out"
+expect_bad --frames 2.5 "from 1 to 10000000" render "$good" --out "$work/out"
 expect_bad --seed -1 "from 0 to 18446744073709551615" render "$good" --out "$work/out"
 expect_bad --seed 18446744073709551616 "from 0 to 18446744073709551615" render "$good" --out "$work/out"
 expect_bad --threads -2 "from 0 to" render "$good" --out "$work/out"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# scripts/plot_eval.py: with no detections the L2 panel says so (no axis about 0 m), the
-# supervised run's re-initialisations (IoU 1 by construction) do not squash the real IoU curve,
-# and eval's scores, which have no supervised run, plot without one.
+# scripts/plot_eval.py: with no detections the L2 panel and its title say so (no axis about 0 m, no
+# "nan"), the supervised run's re-initialisations (IoU 1 by construction) do not squash the real
+# IoU curve, and eval's scores, which have no supervised run, plot without one.
 # Usage: test_plot_eval.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
 py=/usr/bin/python3
@@ -25,6 +25,7 @@ fig = plot_eval.draw(e)
 l2 = fig.axes[0]
 if l2.get_ylim()[0] < 0: bad.append(f"with no detections the L2 axis spans {l2.get_ylim()}")
 if not any("no detections" in t.get_text() for t in l2.texts): bad.append("with no detections the L2 panel does not say so")
+if "nan" in l2.get_title().lower(): bad.append(f"with no detections the title says nan: {l2.get_title()}")
 # Real IoUs about 0.1, supervised resets at 1.0.
 iou = [0.1 + 0.02 * (k % 3) for k in range(n)]
 e = scores([0.2] * n, iou, [1.0 if k % 6 == 0 else iou[k] for k in range(n)], [k % 6 == 0 for k in range(n)])

@@ -51,5 +51,39 @@ PY
 rm -f "$work/d/preview.png"
 "$bin" preview "$work/d" >/dev/null 2>"$work/stderr" || fail "ladarsim preview failed: $(cat "$work/stderr")"
 [ -s "$work/d/preview.png" ] || fail "no preview.png"
+grep -qx "preview.png" "$work/d/.ladarsim-owned" || fail "preview.png is not listed as ladarsim's: a re-render would keep it stale"
+$py "$src/scripts/preview.py" "$work/d" >/dev/null 2>"$work/stderr" || fail "preview.py could not replace its own preview.png"
+
+# What goes wrong is one line in the user's terms, never a traceback.
+one_line() {
+  local what=$1 rc=$2
+  [ "$rc" -ne 0 ] || fail "$what: exit 0"
+  [ "$(wc -l <"$work/stderr")" -eq 1 ] && ! grep -q Traceback "$work/stderr" || fail "$what: not one line: $(cat "$work/stderr")"
+}
+$py "$src/scripts/preview.py" "$work/nowhere" >/dev/null 2>"$work/stderr"
+one_line "a missing directory" $?
+mkdir -p "$work/recorded/frames" && cp "$work/d/frames/000000.pcd" "$work/recorded/frames/" && cp "$work/d/manifest.json" "$work/recorded/"
+$py "$src/scripts/preview.py" "$work/recorded" >/dev/null 2>"$work/stderr"
+one_line "a recorded dataset" $?
+rm -f "$work/d/preview.png"
+chmod a-w "$work/d"
+if [ ! -w "$work/d" ]; then
+  $py "$src/scripts/preview.py" "$work/d" >/dev/null 2>"$work/stderr"
+  one_line "a read-only dataset" $?
+fi
+chmod u+w "$work/d"
+# A preview.png of the user's in a dataset (not on its .ladarsim-owned list): kept.
+"$bin" render "$src/tests/cli/small.json" --out "$work/e" --frames 1 --quiet >/dev/null 2>&1 || fail "render failed"
+echo mine >"$work/e/preview.png"
+$py "$src/scripts/preview.py" "$work/e" >/dev/null 2>"$work/stderr"
+one_line "the user's preview.png" $?
+[ "$(cat "$work/e/preview.png")" = mine ] || fail "preview.py replaced the user's preview.png"
+# And through the program, which passes --force on.
+"$bin" preview "$work/e" >/dev/null 2>"$work/stderr"
+one_line "ladarsim preview over the user's preview.png" $?
+grep -q -- "--force" "$work/stderr" || fail "the refusal does not say --force replaces it: $(cat "$work/stderr")"
+[ "$(cat "$work/e/preview.png")" = mine ] || fail "ladarsim preview replaced the user's preview.png"
+"$bin" preview "$work/e" --force >/dev/null 2>"$work/stderr" || fail "ladarsim preview --force failed: $(cat "$work/stderr")"
+[ "$(cat "$work/e/preview.png")" != mine ] || fail "ladarsim preview --force kept the old preview.png"
 
 if [ "$failures" -eq 0 ]; then echo "preview: all checks passed"; else echo "preview: $failures failed"; exit 1; fi

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Progress on a stderr that is not a terminal (a CI log, tee): whole lines, now and then, never a
-# carriage return, and the last line ended.
+# carriage return, and the last line ended; the time left is estimated as it goes.
 # Usage: test_progress_not_a_terminal.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
 
@@ -9,6 +9,7 @@ grep -q $'\r' "$work/stderr" && fail "render: a carriage return on a non-termina
 grep -qx "frame 40/40.*" "$work/stderr" || fail "render: no whole line for the last frame: $(cat "$work/stderr")"
 [ "$(tail -c1 "$work/stderr" | od -An -c | tr -d ' ')" = '\n' ] || fail "render: the last line is not ended"
 [ "$(wc -l <"$work/stderr")" -le 12 ] || fail "render: more than occasional lines: $(wc -l <"$work/stderr")"
+grep -Eq "^frame [0-9]+/40, about [0-9]+ s left$" "$work/stderr" || fail "render: no estimate of the time left: $(cat "$work/stderr")"
 
 "$bin" table1 --frames 1 --footprint-samples 4 2>"$work/stderr" >/dev/null || fail "table1 failed"
 grep -q $'\r' "$work/stderr" && fail "table1: a carriage return on a non-terminal stderr"

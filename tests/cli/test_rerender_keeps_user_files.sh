@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Rendering or importing onto an earlier dataset replaces only what ladarsim wrote there (its
-# frames, manifest, ground truth, background map and the detections derived from them); the
-# user's own files beside them survive and the command says which it kept. A file of theirs inside
-# frames/ is refused before anything is rendered.
+# frames, manifest, ground truth, background map and the detections derived from them: what its
+# .ladarsim-owned lists); the user's own files beside them survive and the command says which it
+# kept. A file of theirs inside frames/ is refused before anything is rendered.
 # Usage: test_rerender_keeps_user_files.sh LADARSIM_BINARY SOURCE_DIR
 source "$(dirname "$0")/harness.sh"
 good="$src/tests/cli/small.json"
@@ -10,7 +10,7 @@ good="$src/tests/cli/small.json"
 "$bin" render "$good" --out "$work/d" --frames 2 --quiet >/dev/null || fail "first render failed"
 echo "my notes" >"$work/d/NOTES.txt"
 mkdir -p "$work/d/analysis" && echo 42 >"$work/d/analysis/result.txt"
-echo '{}' >"$work/d/detections-vrbnn.json"
+"$bin" detect "$work/d" >/dev/null 2>&1 || fail "detect failed"
 "$bin" render "$good" --out "$work/d" --frames 1 --quiet >"$work/stdout" 2>"$work/stderr" || fail "re-render failed: $(cat "$work/stderr")"
 [ "$(cat "$work/d/NOTES.txt" 2>/dev/null)" = "my notes" ] || fail "NOTES.txt was lost in a re-render"
 [ "$(cat "$work/d/analysis/result.txt" 2>/dev/null)" = 42 ] || fail "analysis/ was lost in a re-render"
@@ -31,13 +31,14 @@ grep -q "^frame " "$work/stderr" && fail "rendering started before the refusal"
 [ "$before" = "$(ls -R "$work/d" | md5sum)" ] || fail "the refused directory was changed"
 rm -f "$work/d/frames/mine.txt"
 
-# The importers follow the same rule.
+# The importers follow the same rule, onto a recorded dataset (a rendered one they refuse: see
+# test_nothing_lost.sh).
 pcap="$shared_data/vlp16/velodyne_vlp16.pcap"
 if [ -f "$pcap" ]; then
-  "$bin" import-velodyne "$pcap" --out "$work/d" >"$work/stdout" 2>"$work/stderr" || fail "import onto an earlier dataset failed: $(cat "$work/stderr")"
-  [ "$(cat "$work/d/NOTES.txt" 2>/dev/null)" = "my notes" ] || fail "NOTES.txt was lost in an import"
-  [ -e "$work/d/analysis/result.txt" ] || fail "analysis/ was lost in an import"
-  [ ! -e "$work/d/ground_truth.json" ] || fail "the rendered dataset's ground truth survived beside recorded frames"
+  "$bin" import-velodyne "$pcap" --out "$work/r" >/dev/null 2>"$work/stderr" || fail "import failed: $(cat "$work/stderr")"
+  echo "my notes" >"$work/r/NOTES.txt"
+  "$bin" import-velodyne "$pcap" --out "$work/r" >"$work/stdout" 2>"$work/stderr" || fail "import onto an earlier import failed: $(cat "$work/stderr")"
+  [ "$(cat "$work/r/NOTES.txt" 2>/dev/null)" = "my notes" ] || fail "NOTES.txt was lost in an import"
   grep -q "NOTES.txt" "$work/stdout" || fail "the import does not say which files were kept: $(cat "$work/stdout")"
 else
   skip "$pcap absent, import not checked"

@@ -16,6 +16,16 @@
 using namespace ladarsim;
 using ladarsim::test::ScratchDir;
 
+namespace {
+
+/// What a previous run left: `names` listed as written by ladarsim.
+void list_as_owned(const std::filesystem::path& dir, const std::vector<std::string>& names) {
+    std::ofstream list(dir / kOwnedList);
+    for (const auto& n : names) list << n << "\n";
+}
+
+}  // namespace
+
 TEST_CASE("an absent, empty or earlier dataset directory may be replaced, and anything else is refused", "[dataset_directory]") {
     const ScratchDir dir;
     CHECK(checked_dataset_dir(dir / "new") == dir / "new");
@@ -24,6 +34,7 @@ TEST_CASE("an absent, empty or earlier dataset directory may be replaced, and an
     CHECK(checked_dataset_dir(dir / "empty") == dir / "empty");
     std::filesystem::create_directories(dir / "earlier");
     std::ofstream(dir / "earlier" / "manifest.json") << "{}";
+    list_as_owned(dir / "earlier", {"manifest.json", "frames"});
     CHECK(checked_dataset_dir(dir / "earlier") == dir / "earlier");
 
     std::filesystem::create_directories(dir / "photos");
@@ -41,7 +52,19 @@ TEST_CASE("an absent, empty or earlier dataset directory may be replaced, and an
     CHECK(test::input_error_of([&] { checked_dataset_dir(dir / "file"); }).field() == "--out");
 }
 
-TEST_CASE("the staging directory replaces ladarsim's entries, keeps the user's and leaves nothing beside it", "[dataset_directory]") {
+TEST_CASE("a manifest.json alone does not make a directory ladarsim's, nor a name a file", "[dataset_directory]") {
+    const ScratchDir dir;
+    std::filesystem::create_directories(dir / "project");
+    std::ofstream(dir / "project" / "manifest.json") << R"({"name": "my web app"})";
+    CHECK_THAT(test::input_error_of([&] { checked_dataset_dir(dir / "project"); }).problem(), Catch::Contains("refusing to replace"));
+    // A file of the user's named as a render's, in a directory ladarsim wrote: refused by name.
+    list_as_owned(dir / "project", {"frames"});
+    std::ofstream(dir / "project" / "background.pcd") << "mine";
+    const InputError e = test::input_error_of([&] { checked_dataset_dir(dir / "project"); });
+    CHECK_THAT(e.problem(), Catch::Contains("background.pcd") && Catch::Contains("manifest.json"));
+}
+
+TEST_CASE("the staging directory replaces ladarsim's listed entries, keeps the user's and leaves nothing beside it", "[dataset_directory]") {
     const ScratchDir dir;
     const auto out = dir / "run";
     CHECK(staging_dir(out) == dir / "run.partial");
@@ -49,18 +72,48 @@ TEST_CASE("the staging directory replaces ladarsim's entries, keeps the user's a
     std::ofstream(out / "frames" / "000009.pcd") << "old";
     std::ofstream(out / "manifest.json") << "old";
     std::ofstream(out / "detections-vrbnn.json") << "old";
+    std::ofstream(out / "detections-handlabelled.json") << "mine";
     std::ofstream(out / "NOTES.txt") << "mine";
     std::filesystem::create_directories(out / "analysis");
+    list_as_owned(out, {"frames", "manifest.json", "detections-vrbnn.json"});
     std::filesystem::create_directories(staging_dir(out) / "frames");
     std::ofstream(staging_dir(out) / "manifest.json") << "{}";
-    CHECK(swap_in_dataset(staging_dir(out), out) == std::vector<std::string>{"NOTES.txt", "analysis/"});
+    CHECK(swap_in_dataset(staging_dir(out), out) ==
+          std::vector<std::string>{"NOTES.txt", "analysis/", "detections-handlabelled.json"});
     CHECK(read_json(out / "manifest.json") == nlohmann::json::object());
     CHECK_FALSE(std::filesystem::exists(out / "frames" / "000009.pcd"));
     CHECK_FALSE(std::filesystem::exists(out / "detections-vrbnn.json"));
     CHECK(std::filesystem::exists(out / "NOTES.txt"));
     CHECK(std::filesystem::exists(out / "analysis"));
+    CHECK(owned_entries(out) == std::vector<std::string>{"frames", "manifest.json"});
     CHECK_FALSE(std::filesystem::exists(staging_dir(out)));
     CHECK_FALSE(std::filesystem::exists(dir / "run.old"));
+}
+
+TEST_CASE("a file is replaced only when ladarsim wrote it, or with --force", "[dataset_directory]") {
+    const ScratchDir dir;
+    CHECK_NOTHROW(check_replaceable(dir / "new.json", "--out", false));
+    std::ofstream(dir / "mine.json") << "mine";
+    CHECK_THAT(test::input_error_of([&] { check_replaceable(dir / "mine.json", "--out", false); }).problem(),
+               Catch::Contains("--force"));
+    CHECK_NOTHROW(check_replaceable(dir / "mine.json", "--out", true));
+    CHECK_THAT(test::input_error_of([&] { check_replaceable(dir.path(), "--out", true); }).problem(), Catch::Contains("is a directory"));
+    CHECK_THAT(test::input_error_of([&] { check_replaceable(dir / "absent" / "e.png", "--plot", false); }).problem(),
+               Catch::Contains("does not exist"));
+    // Recorded in a directory of ladarsim's: then it is ladarsim's to replace.
+    list_as_owned(dir.path(), {"frames"});
+    record_owned(dir / "mine.json");
+    CHECK_NOTHROW(check_replaceable(dir / "mine.json", "--out", false));
+}
+
+TEST_CASE("a second writer of one output is refused while the first holds its staging directory", "[dataset_directory]") {
+    const ScratchDir dir;
+    const StagingDir first(dir / "out");
+    std::ofstream(first.path() / "frame") << "the first run's";
+    const InputError e = test::input_error_of([&] { StagingDir second(dir / "out"); });
+    CHECK(e.field() == "--out");
+    CHECK_THAT(e.problem(), Catch::Contains("another ladarsim run"));
+    CHECK(std::filesystem::exists(first.path() / "frame"));
 }
 
 TEST_CASE("a recorded dataset: its frames, and a manifest naming the source and the sensor", "[dataset_directory]") {

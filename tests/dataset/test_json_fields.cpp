@@ -122,3 +122,14 @@ TEST_CASE("json_fields: keys never read are reported with their full path", "[js
     CHECK_THROWS_AS(g.number("b", 0, 10), InputError);
     CHECK_NOTHROW(g.reject_unknown_keys());
 }
+
+TEST_CASE("json_fields: a misspelt required key is reported as the unknown key it is, with what it meant", "[json_fields]") {
+    const auto j = nlohmann::json::parse(R"({"sped_mps": 2, "beams_el": 3, "y": 1})");
+    JsonFields f(j, "s.json", "objects[0].trajectory");
+    const InputError e = input_error_of([&] { f.number("speed_mps", 0, 10); });
+    CHECK(e.field() == "objects[0].trajectory.sped_mps");
+    CHECK(e.problem() == "unknown key; did you mean \"speed_mps\"?");
+    // Keys two letters apart, or short, are often both valid: the missing one is named.
+    CHECK(input_error_of([&] { f.number("beams_az", 0, 10); }).field() == "objects[0].trajectory.beams_az");
+    CHECK(input_error_of([&] { f.number("x", 0, 10); }).problem() == "required field is missing");
+}

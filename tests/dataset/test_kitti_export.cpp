@@ -160,6 +160,7 @@ TEST_CASE("an export directory is replaced only where ladarsim wrote it", "[kitt
     std::filesystem::create_directories(out / "training" / "velodyne");
     std::ofstream(out / "training" / "velodyne" / "000000.bin") << "ours";
     std::ofstream(out / "ladarsim_export.json") << "{}";
+    std::ofstream(out / kOwnedList) << "training\nladarsim_export.json\n";
     std::ofstream(out / "NOTES.txt") << "theirs";
     CHECK(checked_output_dir(out, kitti_layout()) == out);
     std::filesystem::create_directories(out / "training" / "image_2");
@@ -170,7 +171,7 @@ TEST_CASE("an export directory is replaced only where ladarsim wrote it", "[kitt
     std::ofstream(out / "training" / "velodyne" / "notes.txt") << "theirs";
     CHECK_THAT(test::input_error_of([&] { checked_output_dir(out, kitti_layout()); }).problem(),
                Catch::Contains("training/velodyne/notes.txt"));
-    std::filesystem::remove(out / "ladarsim_export.json");
+    std::filesystem::remove(out / kOwnedList);
     std::filesystem::remove(out / "training" / "velodyne" / "notes.txt");
     CHECK_THAT(test::input_error_of([&] { checked_output_dir(out, kitti_layout()); }).problem(),
                Catch::Contains("refusing to replace"));

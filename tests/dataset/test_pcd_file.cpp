@@ -3,6 +3,7 @@
 // InputError naming the file and the keyword for anything malformed.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -226,7 +227,11 @@ TEST_CASE("random bytes: InputError naming the file", "[pcd_file]") {
         for (char& b : bytes) b = static_cast<char>(rng() & 0xFF);
         if (trial % 2) bytes = kHeaderStart + "WIDTH 100\nDATA binary_compressed\n" + bytes;
         write_text(dir / "garbage.pcd", bytes);
-        CHECK(error_of(dir / "garbage.pcd").file() == (dir / "garbage.pcd").string());
+        const InputError e = error_of(dir / "garbage.pcd");
+        CHECK(e.file() == (dir / "garbage.pcd").string());
+        // The message is for a person: never the file's raw bytes.
+        const std::string message = e.what();
+        CHECK(std::all_of(message.begin(), message.end(), [](char c) { return c >= 0x20 && c < 0x7f; }));
     }
 }
 

@@ -35,11 +35,14 @@ def test_ctrl_c_stops_a_render_into_a_directory_which_resume_finishes(tmp_path):
     interrupt_once(pathlib.Path(str(out) + ".partial") / "frames" / "000000.log.json")
     try:
         ladarsim.render(sys.argv[1], frames=40, out=out, threads=1)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as stopped:
+        print(stopped)
         sys.exit(3)
     sys.exit(0)
     """, SMALL, out)
     assert result.returncode == 3, result.stderr
+    # It says where the finished frames are and how to continue.
+    assert "run.partial" in result.stdout and "resume=True" in result.stdout, result.stdout
     assert not out.exists()
     finished = sorted((tmp_path / "run.partial" / "frames").glob("*.pcd"))
     assert 1 <= len(finished) < 40

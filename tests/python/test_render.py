@@ -96,11 +96,28 @@ def test_a_typo_in_a_dict_scenario_is_an_input_error_naming_the_key():
         ladarsim.render(document)
 
 
+def test_a_misspelt_required_key_in_a_dict_is_named_with_what_it_meant():
+    document = small_document()
+    trajectory = document["objects"][1]["trajectory"]
+    trajectory["sped_mps"] = trajectory.pop("speed_mps")
+    with pytest.raises(ladarsim.InputError) as error:
+        ladarsim.render(document, base_dir=SMALL.parent)
+    assert error.value.field == "objects[1].trajectory.sped_mps"
+    assert error.value.problem == 'unknown key; did you mean "speed_mps"?'
+
+
 def test_errors_in_files_and_arguments_name_what_is_wrong(tmp_path):
     with pytest.raises(ladarsim.InputError, match="nowhere.json"):
         ladarsim.render(tmp_path / "nowhere.json")
-    with pytest.raises(ladarsim.InputError, match="frames: must be at least 1"):
+    with pytest.raises(ladarsim.InputError, match="frames: 0 is not a whole number from 1 to 10000000"):
         ladarsim.render(SMALL, frames=0)
+    # Not pybind11's "incompatible function arguments" TypeError: the argument, in the user's terms.
+    with pytest.raises(ladarsim.InputError, match="seed: -1 is not a whole number from 0"):
+        ladarsim.render(SMALL, seed=-1)
+    with pytest.raises(ladarsim.InputError, match="frames: expected a whole number from 1 to 10000000, found '3'"):
+        ladarsim.render(SMALL, frames="3")
+    with pytest.raises(ladarsim.InputError, match="threads: expected a whole number"):
+        ladarsim.render(SMALL, threads=1.5)
     with pytest.raises(ladarsim.InputError, match="base_dir"):
         ladarsim.render(SMALL, base_dir=tmp_path)
     with pytest.raises(TypeError, match="a file's path or a dict"):

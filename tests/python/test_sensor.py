@@ -33,5 +33,5 @@ def test_a_sensor_file_reads_as_its_preset_and_a_typo_names_file_and_key(tmp_pat
     with pytest.raises(ladarsim.InputError) as error:
         ladarsim.Sensor.from_file(broken)
     assert error.value.file == str(broken) and error.value.field == "scan.colums"
-    with pytest.raises(ValueError):
-        ladarsim.Sensor.preset("no_such_sensor")
+    with pytest.raises(ValueError, match="the presets are .*paper_ladar"):
+        ladarsim.Sensor.preset("paper_lader")

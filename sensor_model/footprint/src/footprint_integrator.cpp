@@ -91,9 +91,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     out.volume.clear();
     out.rays = 0;
     const FootprintContext& context = s_->context;
-    const FootprintPart whole{context.shape.footprint().square()};
+    const FootprintPart whole{context.shape.footprint().square(), std::nullopt, 1.0, 0};
     if (!context.adaptive) {
-        s_->reference.integrate({aim, probes, {}, context.traced.has_volumes(), frame}, whole, out);
+        s_->reference.integrate({aim, probes, {}, context.traced.has_volumes(), frame, 0}, whole, out);
         return;
     }
     thread_local TargetsInCone targets;

@@ -1,5 +1,6 @@
 #include "ladarsim/sensor_model/render/geometry_checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -99,6 +100,35 @@ std::vector<std::string> geometry_warnings(const Scenario& scenario, FrameRender
                                "; move the sensor or the object");
         }
         break;  // once
+    }
+    // Deeper inside, its walls beyond the minimum range: the six rays along the world's axes all
+    // meet the same object (a building's walls, floor and roof), which returns from within.
+    if (warnings.empty()) {
+        std::vector<raytrace::Ray> axes;
+        for (int axis = 0; axis < 6; ++axis) {
+            raytrace::Ray ray;
+            ray.origin_world = sensor;
+            ray.direction = Eigen::Vector3d::Unit(axis / 2) * (axis % 2 ? -1.0 : 1.0);
+            ray.time_s = time_of(0);
+            ray.max_range_m = receiver.max_range_m;
+            axes.push_back(ray);
+        }
+        std::vector<std::optional<raytrace::Hit>> hits(axes.size());
+        renderer.traced().trace(axes, hits);
+        const bool enclosed = std::all_of(hits.begin(), hits.end(), [&](const std::optional<raytrace::Hit>& h) {
+            return h && h->object_id != 0 && h->object_id == hits[0]->object_id;
+        });
+        if (enclosed) {
+            double farthest_m = 0.0;
+            for (const auto& h : hits) farthest_m = std::max(farthest_m, h->range_m);
+            std::string label = "object " + std::to_string(hits[0]->object_id);
+            for (const auto& o : scenario.scene.objects)
+                if (o.id == hits[0]->object_id) label = object_label(o);
+            warnings.push_back("the sensor at (" + fixed(sensor.x(), 2) + ", " + fixed(sensor.y(), 2) + ", " + fixed(sensor.z(), 2) +
+                               ") m looks like it is inside " + label + ": it meets it in all six directions (up, down, " +
+                               "north, south, east, west) within " + fixed(farthest_m, 1) +
+                               " m, and its beams will return from its inside walls; move the sensor or the object");
+        }
     }
 
     const GimbalLimits& limits = scenario.sensor.gimbal;

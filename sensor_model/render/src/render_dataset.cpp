@@ -121,6 +121,8 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
 }  // namespace
 
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) {
+    if (options.frames && (*options.frames < 1 || *options.frames > kMaxFrames))
+        throw InputError(std::to_string(*options.frames), "frames", "is not a whole number from 1 to " + std::to_string(kMaxFrames));
     if (options.frames) scenario.render.frames = *options.frames;
     if (options.seed) scenario.render.seed = *options.seed;
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
@@ -133,6 +135,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     // previous dataset untouched, and a finished one never mixes with its stale frames.
     const std::filesystem::path out = checked_dataset_dir(options.out_dir);
     const std::filesystem::path staging = staging_dir(out);
+    std::optional<StagingDir> staging_lock;
     const std::filesystem::path run_file = staging / "run.json";
     const std::filesystem::path frames_dir = staging / "frames";
     const nlohmann::json run_key = {{"scenario", scenario.source}, {"seed", scenario.render.seed}, {"frames", scenario.render.frames}};
@@ -144,11 +147,20 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     std::string setup_error;
     if (first_process) {
         try {
-            const bool resuming = options.resume && std::filesystem::exists(run_file);
-            if (resuming && read_json(run_file) != run_key)
-                throw InputError(run_file.string(), "run", "the interrupted run is of another scenario, seed or frame count");
-            if (!resuming) {
-                std::filesystem::remove_all(staging);
+            staging_lock.emplace(out);
+            const bool interrupted = std::filesystem::exists(run_file);
+            if (interrupted && !options.resume)
+                throw InputError(out.string(), "--out",
+                                 staging.filename().string() + " holds the finished frames of an interrupted render: continue it "
+                                 "with --resume, or delete " + staging.string() + " to start over");
+            if (options.resume && !interrupted)
+                spdlog::warn("--resume: {} holds no interrupted render; rendering from the start", staging.string());
+            if (interrupted && read_json(run_file) != run_key)
+                throw InputError(run_file.string(), "run",
+                                 "the interrupted run is of another scenario, seed or frame count; delete " + staging.string() +
+                                     " to start over");
+            if (!interrupted) {
+                staging_lock->clear();
                 std::filesystem::create_directories(frames_dir);
                 write_json(run_file, run_key);
             }
@@ -205,8 +217,9 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     }
     const bool any_failure = team.any(!failure.empty());
     if (any_failure) {
-        throw FrameFailure(failure.empty() ? "another process of the run failed; finished frames are in " + staging.string()
-                                           : failure);
+        // The finished frames stay, and hold their space on the disk: say where, and what to do.
+        throw FrameFailure((failure.empty() ? "another process of the run failed" : failure) + "; finished frames are in " +
+                           staging.string() + " (continue with --resume, or delete it to free its space)");
     }
 
     // What is on disk now: every record, from whichever process wrote it.
@@ -214,8 +227,18 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
 
-    for (int k = 0; k < scenario.render.frames; ++k) {
-        if (!std::filesystem::exists(record_of(k))) continue;
+    // From the directory, not frame by frame: after Ctrl-C early in a run of millions of frames,
+    // asking for each would take seconds.
+    std::vector<int> finished;
+    for (const auto& e : std::filesystem::directory_iterator(frames_dir)) {
+        const std::string name = e.path().filename().string();
+        if (name.size() > 9 && name.ends_with(".log.json")) {
+            const long long k = std::stoll(name.substr(0, name.size() - 9));
+            if (k < scenario.render.frames) finished.push_back(static_cast<int>(k));
+        }
+    }
+    std::sort(finished.begin(), finished.end());
+    for (const int k : finished) {
         nlohmann::json record = read_json(record_of(k));
         for (const auto& [id, count] : record.at("returns_by_object").items())
             summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();

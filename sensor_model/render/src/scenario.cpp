@@ -6,6 +6,7 @@
 #include "ladarsim/core/json_fields.h"
 #include "ladarsim/scene/scene_file.h"
 #include "ladarsim/scene/trajectory.h"
+#include "ladarsim/sensor_model/render/render_dataset.h"
 #include "scenario_document.h"
 
 namespace ladarsim::sensor_model {
@@ -30,7 +31,7 @@ SensorMount read_mount(JsonFields& sensor) {
 
 RenderSettings read_render(JsonFields& render) {
     RenderSettings r;
-    r.frames = static_cast<int>(render.integer("frames", 1, 10'000'000, r.frames));
+    r.frames = static_cast<int>(render.integer("frames", 1, kMaxFrames, r.frames));
     r.seed = static_cast<std::uint64_t>(render.integer("seed", 0, std::numeric_limits<long long>::max(), 1));
     r.start_time_s = render.number("start_time_s", -1e9, 1e9, r.start_time_s);
     r.motion_steps = static_cast<int>(render.integer("motion_steps", 2, 129, r.motion_steps));

@@ -54,7 +54,11 @@ std::vector<std::string> sensor_presets() {
 
 const nlohmann::json& sensor_preset_document(const std::string& name) {
     const auto it = preset_documents().find(name);
-    if (it == preset_documents().end()) throw std::invalid_argument("unknown sensor preset \"" + name + "\"");
+    if (it == preset_documents().end()) {
+        std::string names;
+        for (const auto& n : sensor_presets()) names += (names.empty() ? "" : ", ") + n;
+        throw std::invalid_argument("unknown sensor preset \"" + name + "\"; the presets are " + names);
+    }
     return it->second;
 }
 

@@ -24,9 +24,13 @@ public:
     virtual bool any(bool mine) { return mine; }
 };
 
+/// The most frames one render may have, a scenario's render.frames and --frames alike: the
+/// frames' bookkeeping (each one's gimbal pointing, manifest record) is held in memory.
+inline constexpr int kMaxFrames = 10'000'000;
+
 struct DatasetOptions {
     std::filesystem::path out_dir;
-    std::optional<int> frames;          ///< overrides the scenario's render.frames
+    std::optional<int> frames;          ///< overrides the scenario's render.frames; 1 to kMaxFrames
     std::optional<std::uint64_t> seed;  ///< overrides the scenario's render.seed
     int threads = 0;                    ///< 0 = all cores
     /// Called after each frame is on disk.
