@@ -118,6 +118,77 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
     return map.returns.size();
 }
 
+/// The files of a render being staged beside its destination.
+struct StagingFiles {
+    std::filesystem::path staging, run_file, frames_dir;
+    explicit StagingFiles(const std::filesystem::path& dir) : staging(dir), run_file(dir / "run.json"), frames_dir(dir / "frames") {}
+    /// A finished frame's record (written last: its presence says the frame is complete) and ground truth.
+    std::filesystem::path record_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".log.json"); }
+    std::filesystem::path truth_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".truth.json"); }
+};
+
+/// Locks the staging directory and starts it afresh, or (with `resume`) keeps what an interrupted
+/// run of the same scenario, seed and frame count left there.
+void prepare_staging(const std::filesystem::path& out, const StagingFiles& files, const nlohmann::json& run_key, bool resume,
+                     std::optional<StagingDir>& staging_lock) {
+    staging_lock.emplace(out);
+    const bool interrupted = std::filesystem::exists(files.run_file);
+    if (interrupted && !resume)
+        throw InputError(out.string(), "--out",
+                         files.staging.filename().string() + " holds the finished frames of an interrupted render: continue it "
+                         "with --resume, or delete " + files.staging.string() + " to start over");
+    if (resume && !interrupted) spdlog::warn("--resume: {} holds no interrupted render; rendering from the start", files.staging.string());
+    if (interrupted && read_json(files.run_file) != run_key)
+        throw InputError(files.run_file.string(), "run",
+                         "the interrupted run is of another scenario, seed or frame count; delete " + files.staging.string() +
+                             " to start over");
+    if (!interrupted) {
+        staging_lock->clear();
+        std::filesystem::create_directories(files.frames_dir);
+        write_json(files.run_file, run_key);
+    }
+}
+
+/// Renders frame `k` into the staging directory: its PCD, EXR and ground truth, then its record.
+void render_frame(FrameRenderer& renderer, int k, const StagingFiles& files) {
+    using Clock = std::chrono::steady_clock;
+    const auto started = Clock::now();
+    const Frame frame = renderer.render(static_cast<std::uint64_t>(k));
+    const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+    const std::string stem = frame_file_stem(frame.index);
+    write_frame_pcd(files.frames_dir / (stem + ".pcd"), frame);
+    write_frame_exr(files.frames_dir / (stem + ".exr"), frame);
+    write_ground_truth_json(files.truth_of(k), {ground_truth_of(frame)});
+    std::map<std::uint32_t, std::uint64_t> counts;
+    for (const auto& r : frame.returns) ++counts[r.object_id];
+    nlohmann::json by_object = nlohmann::json::object();
+    for (const auto& [id, count] : counts) by_object[std::to_string(id)] = count;
+    write_json(files.record_of(k), {{"index", frame.index},
+                                    {"start_time_s", frame.start_time_s},
+                                    {"end_time_s", frame.end_time_s},
+                                    {"gimbal_az_rad", frame.gimbal_az_rad},
+                                    {"gimbal_el_rad", frame.gimbal_el_rad},
+                                    {"returns", frame.returns.size()},
+                                    {"returns_by_object", by_object},
+                                    {"render_s", seconds}});
+}
+
+/// The frames below `frames` whose records are in the staging directory, in order. From the
+/// directory, not frame by frame: after Ctrl-C early in a run of millions of frames, asking for
+/// each would take seconds.
+std::vector<int> finished_frames(const StagingFiles& files, int frames) {
+    std::vector<int> finished;
+    for (const auto& e : std::filesystem::directory_iterator(files.frames_dir)) {
+        const std::string name = e.path().filename().string();
+        if (name.size() > 9 && name.ends_with(".log.json")) {
+            const long long k = std::stoll(name.substr(0, name.size() - 9));
+            if (k < frames) finished.push_back(static_cast<int>(k));
+        }
+    }
+    std::sort(finished.begin(), finished.end());
+    return finished;
+}
+
 }  // namespace
 
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) {
@@ -134,36 +205,17 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     // Built beside the destination and swapped in when complete: an interrupted run leaves a
     // previous dataset untouched, and a finished one never mixes with its stale frames.
     const std::filesystem::path out = checked_dataset_dir(options.out_dir);
-    const std::filesystem::path staging = staging_dir(out);
+    const StagingFiles files(staging_dir(out));
+    const std::filesystem::path& staging = files.staging;
     std::optional<StagingDir> staging_lock;
-    const std::filesystem::path run_file = staging / "run.json";
-    const std::filesystem::path frames_dir = staging / "frames";
     const nlohmann::json run_key = {{"scenario", scenario.source}, {"seed", scenario.render.seed}, {"frames", scenario.render.frames}};
-    auto record_of = [&](int k) { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".log.json"); };
-    auto truth_of = [&](int k) { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".truth.json"); };
 
     // Frames are independent given the scenario and seed (the gimbal is replayed from frame 0), so
     // the frames an interrupted run left are exactly what this one would render again.
     std::string setup_error;
     if (first_process) {
         try {
-            staging_lock.emplace(out);
-            const bool interrupted = std::filesystem::exists(run_file);
-            if (interrupted && !options.resume)
-                throw InputError(out.string(), "--out",
-                                 staging.filename().string() + " holds the finished frames of an interrupted render: continue it "
-                                 "with --resume, or delete " + staging.string() + " to start over");
-            if (options.resume && !interrupted)
-                spdlog::warn("--resume: {} holds no interrupted render; rendering from the start", staging.string());
-            if (interrupted && read_json(run_file) != run_key)
-                throw InputError(run_file.string(), "run",
-                                 "the interrupted run is of another scenario, seed or frame count; delete " + staging.string() +
-                                     " to start over");
-            if (!interrupted) {
-                staging_lock->clear();
-                std::filesystem::create_directories(frames_dir);
-                write_json(run_file, run_key);
-            }
+            prepare_staging(out, files, run_key, options.resume, staging_lock);
         } catch (...) {
             team.any(true);  // the others wait on this before rendering: release them first
             throw;
@@ -177,7 +229,6 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
             spdlog::warn("{}: {}", scenario.file.string(), w);
     DatasetSummary summary;
     summary.out_dir = out;
-    using Clock = std::chrono::steady_clock;
     std::string failure;
     bool stopped = false;
     // Every process takes the same number of turns, so that the collective checks line up.
@@ -185,29 +236,10 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     for (int turn = 0; turn < turns; ++turn) {
         const int k = turn * team.size() + team.rank();
         stopped = options.stop && options.stop->load();
-        if (!stopped && k < scenario.render.frames && !std::filesystem::exists(record_of(k))) {
+        if (!stopped && k < scenario.render.frames && !std::filesystem::exists(files.record_of(k))) {
             try {
                 if (k == options.fail_at_frame) throw std::runtime_error("failure injected for testing");
-                const auto started = Clock::now();
-                const Frame frame = renderer.render(static_cast<std::uint64_t>(k));
-                const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
-                const std::string stem = frame_file_stem(frame.index);
-                write_frame_pcd(frames_dir / (stem + ".pcd"), frame);
-                write_frame_exr(frames_dir / (stem + ".exr"), frame);
-                write_ground_truth_json(truth_of(k), {ground_truth_of(frame)});
-                std::map<std::uint32_t, std::uint64_t> counts;
-                for (const auto& r : frame.returns) ++counts[r.object_id];
-                nlohmann::json by_object = nlohmann::json::object();
-                for (const auto& [id, count] : counts) by_object[std::to_string(id)] = count;
-                // Written last: its presence says the frame is complete.
-                write_json(record_of(k), {{"index", frame.index},
-                                          {"start_time_s", frame.start_time_s},
-                                          {"end_time_s", frame.end_time_s},
-                                          {"gimbal_az_rad", frame.gimbal_az_rad},
-                                          {"gimbal_el_rad", frame.gimbal_el_rad},
-                                          {"returns", frame.returns.size()},
-                                          {"returns_by_object", by_object},
-                                          {"render_s", seconds}});
+                render_frame(renderer, k, files);
             } catch (const std::exception& e) {
                 failure = "frame " + std::to_string(k) + ": " + e.what();
             }
@@ -227,26 +259,15 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
 
-    // From the directory, not frame by frame: after Ctrl-C early in a run of millions of frames,
-    // asking for each would take seconds.
-    std::vector<int> finished;
-    for (const auto& e : std::filesystem::directory_iterator(frames_dir)) {
-        const std::string name = e.path().filename().string();
-        if (name.size() > 9 && name.ends_with(".log.json")) {
-            const long long k = std::stoll(name.substr(0, name.size() - 9));
-            if (k < scenario.render.frames) finished.push_back(static_cast<int>(k));
-        }
-    }
-    std::sort(finished.begin(), finished.end());
-    for (const int k : finished) {
-        nlohmann::json record = read_json(record_of(k));
+    for (const int k : finished_frames(files, scenario.render.frames)) {
+        nlohmann::json record = read_json(files.record_of(k));
         for (const auto& [id, count] : record.at("returns_by_object").items())
             summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();
         record.erase("returns_by_object");
         summary.returns += record.at("returns").get<std::uint64_t>();
         summary.render_seconds += record.at("render_s").get<double>();
         pointings.push_back({record.at("gimbal_az_rad").get<double>(), record.at("gimbal_el_rad").get<double>()});
-        for (FrameGroundTruth& g : read_ground_truth_json(truth_of(k))) truth.push_back(std::move(g));
+        for (FrameGroundTruth& g : read_ground_truth_json(files.truth_of(k))) truth.push_back(std::move(g));
         frame_log.push_back(std::move(record));
     }
     summary.frames = static_cast<int>(frame_log.size());
@@ -274,10 +295,10 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
                        {"render_s", summary.render_seconds},
                        {"beams_per_s", summary.beams_per_second}}}}});
     for (int k = 0; k < scenario.render.frames; ++k) {
-        std::filesystem::remove(record_of(k));
-        std::filesystem::remove(truth_of(k));
+        std::filesystem::remove(files.record_of(k));
+        std::filesystem::remove(files.truth_of(k));
     }
-    std::filesystem::remove(run_file);
+    std::filesystem::remove(files.run_file);
     summary.kept = swap_in_dataset(staging, out);
     return summary;
 }
