@@ -67,7 +67,8 @@ int rendered_point_count_at(const sensor_model::Sensor& sensor, int footprint_sa
 }
 
 CountStatistics rendered_point_count(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
-                                     double range_m, int frames, bool noise, std::uint64_t seed) {
+                                     double range_m, int frames, bool noise, std::uint64_t seed,
+                                     const std::function<void()>& frame_done) {
     const sensor_model::ScanPattern& scan = *sensor.scan;
     const double pitch_az = scan.field_az_deg() * kDeg / scan.columns();
     const double pitch_el = scan.field_el_deg() * kDeg / scan.rows();
@@ -77,6 +78,7 @@ CountStatistics rendered_point_count(const sensor_model::Sensor& sensor, int foo
         const auto u = sensor_model::uniform4(seed, sensor_model::RandomStream::footprint_jitter, static_cast<std::uint64_t>(f), 0xFFFFFFFFu, 0);
         stats.per_frame.push_back(rendered_point_count_at(sensor, footprint_samples, target, range_m, (u[0] - 0.5) * pitch_az,
                                                           (u[1] - 0.5) * pitch_el, noise, seed, static_cast<std::uint64_t>(f)));
+        if (frame_done) frame_done();
     }
     if (frames > 0) {
         double sum = 0.0, square = 0.0;
@@ -99,7 +101,13 @@ nlohmann::json table1_comparison(const sensor_model::Sensor& sensor, int footpri
     const auto& printed = printed_table1();
     const double target_m = 0.3;
     const sensor_model::ScanPattern& scan = *sensor.scan;
+    constexpr int kRunsPerRange = 4;
+    const int total_frames = static_cast<int>(printed.size()) * kRunsPerRange * frames;
     int done = 0;
+    if (progress) progress(done, total_frames);
+    const std::function<void()> frame_done = [&] {
+        if (progress) progress(++done, total_frames);
+    };
     for (const PrintedTable1Row& paper : printed) {
         const double r = paper.range_m;
         const AnalyticPointCount stated = paper_point_count(r, scan.field_az_deg(), target_m, scan.columns(), scan.rows(),
@@ -126,11 +134,11 @@ nlohmann::json table1_comparison(const sensor_model::Sensor& sensor, int footpri
             {"analytic_tp_0p65deg", wide.tp},
             {"lines_az_x_el_0p5deg", stated.lines_az * stated.lines_el},
         };
-        const struct { const char* name; std::shared_ptr<const scene::Model> model; bool noise; } runs[] = {
+        const struct { const char* name; std::shared_ptr<const scene::Model> model; bool noise; } runs[kRunsPerRange] = {
             {"rendered_plate", plate, true}, {"rendered_plate_noiseless", plate, false},
             {"rendered_drone", drone, true}, {"rendered_drone_noiseless", drone, false}};
         for (const auto& run : runs) {
-            const CountStatistics s = rendered_point_count(sensor, footprint_samples, run.model, r, frames, run.noise, seed);
+            const CountStatistics s = rendered_point_count(sensor, footprint_samples, run.model, r, frames, run.noise, seed, frame_done);
             const std::string n = run.name;
             row[n + "_mean"] = s.mean;
             row[n + "_stddev"] = s.stddev;
@@ -138,7 +146,6 @@ nlohmann::json table1_comparison(const sensor_model::Sensor& sensor, int footpri
             row[n + "_max"] = s.max;
         }
         rows.push_back(row);
-        if (progress) progress(++done, static_cast<int>(printed.size()));
     }
     return rows;
 }

@@ -27,6 +27,7 @@ expect_bad --seed -1 "from 0 to 18446744073709551615" render "$good" --out "$wor
 expect_bad --seed 18446744073709551616 "from 0 to 18446744073709551615" render "$good" --out "$work/out"
 expect_bad --threads -2 "from 0 to" render "$good" --out "$work/out"
 expect_bad --frames 0 "from 1 to" table1
+expect_bad --threads -2 "from 0 to" table1
 expect_bad --target -3 "from 1 to 4294967295" detect "$work"
 
 # Good values still work, and the largest seed is the seed given.

@@ -59,13 +59,15 @@ int rendered_point_count_at(const sensor_model::Sensor& sensor, int footprint_sa
 /// Renders `frames` frames of a lone target (no background, clear air) centred in the sensor's
 /// field at `range_m`, facing the sensor, moved by a random sub-beam offset (uniform over one
 /// beam pitch in azimuth and elevation) in each frame; counts the returns the detector reports
-/// on it. Deterministic for a seed.
+/// on it. Deterministic for a seed. `frame_done` is called after each frame.
 CountStatistics rendered_point_count(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> target,
-                                     double range_m, int frames, bool noise, std::uint64_t seed);
+                                     double range_m, int frames, bool noise, std::uint64_t seed,
+                                     const std::function<void()>& frame_done = {});
 
 /// Table 1 side by side: for each printed range, the paper's row, Eqs. 4-8 under the stated 0.5 deg
 /// field and the 0.65 deg reading, and the rendered counts (mean, stddev, min, max) for the plate
-/// and the drone with noise on and off. `progress` is called after each range.
+/// and the drone with noise on and off. `progress` is called with (frames rendered, frames in all)
+/// once before the first frame and after each frame.
 nlohmann::json table1_comparison(const sensor_model::Sensor& sensor, int footprint_samples, std::shared_ptr<const scene::Model> plate,
                                  std::shared_ptr<const scene::Model> drone, int frames, std::uint64_t seed,
                                  const std::function<void(int done, int total)>& progress = {});
