@@ -24,7 +24,7 @@ struct BenchCommand {
             "bench", "Measure speed against accuracy: our render against raw Embree on the same rays, the real-time factor "
                      "of the default scenario at each accuracy, beams/s against point-count/energy/range error for a drone "
                      "at 200, 1000, 2000 m, and scaling with beams, triangles and map points");
-        bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about a minute)");
+        bench_cmd->add_flag("--quick", bench_options.quick, "Fewer frames and sizes (about 3 min on 2 cores)");
         bench_cmd->add_option("--json", bench_json, "Write every figure to this JSON file");
         auto* plot = bench_cmd->add_option("--plot", bench_plot, "Draw speed against error into this PNG (needs python3-matplotlib)");
         bench_options.scenario = data_dir() / "scenarios" / "default.json";  // the bundled one, wherever it is installed
