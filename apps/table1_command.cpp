@@ -34,7 +34,7 @@ struct Table1Command {
         table1 = app.add_subcommand(
             "table1", "Check the paper's Table 1: its printed counts, its Eqs. 4-8 under a 0.5 and a 0.65 deg field, and the\n"
                       "returns rendered on a 0.3 m plate and quadcopter at each range (docs/table1.md). Renders\n"
-                      "7 ranges x 4 settings x --frames frames: about 9 min on 2 cores with the defaults");
+                      "7 ranges x 4 settings x --frames frames: about 6 min on 2 cores with the defaults");
         table1->add_option("--json", table_json, "Write every number as JSON (a list of rows)");
         table1->add_option("--markdown", table_markdown, "Write the table as markdown");
         table1->add_option("--plot", table_plot, "Draw counts against range into this PNG (needs python3-matplotlib)");
