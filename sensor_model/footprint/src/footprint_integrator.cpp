@@ -146,6 +146,8 @@ void FootprintIntegrator::Strategies::integrate_targets(const BeamSetting& beam,
     thread_local std::vector<Probe> seeds;
     thread_local std::vector<ProbeHit> seed_hits;
     bool seeded = false;
+    // Seeding may grow `witnesses` and so leave `beam.witnesses` stale: strategies that read the
+    // witnesses after it take with_seeds()'s setting (the plane patch reads only the probes).
     auto with_seeds = [&] {
         if (!std::exchange(seeded, true)) cone.add_seeds(beam.aim, targets, seeds, seed_hits, witnesses, out);
         return BeamSetting{beam.aim, beam.probes, witnesses, beam.media, beam.frame, beam.lone_target_id};
