@@ -188,7 +188,11 @@ async function main() {
       controls.update();
     }
 
-    // The range image, jet from near to far, black where no return.
+    // The range image, jet from near to far, black where no return. Recorded frames have none
+    // (the importers write point clouds only): say so rather than show an empty box.
+    document.getElementById('range-box').hidden = !range;
+    document.getElementById('no-range').hidden = !!range;
+    state.range_image = range ? state.range_image : null;
     if (range) {
       const [w, h] = new Uint32Array(range, 0, 2);
       const r = new Float32Array(range, 8, w * h);
@@ -212,12 +216,18 @@ async function main() {
 
     // The panel.
     const perFrame = scores?.per_frame?.[k];
+    // Detections without a target id: a recording has no object ids, yet its detections are drawn.
+    const targetText = target !== null ? `object ${target}`
+      : detections ? `none named (no cue); detection box ${detectedBoxes ? 'drawn' : 'not found'} this frame`
+      : 'none (no cue, no detections)';
     const rows = [
-      ['frame', `${info.index} of ${frames.length}`],
-      ['time', `${(info.start_time_s ?? 0).toFixed(3)} s`],
+      // Counted from 1 like the slider's label: a recording's first frame is index 0.
+      ['frame', `${k + 1} of ${frames.length}`],
+      // From the run's first frame: a recording's times are seconds since 1970.
+      ['time', `${((info.start_time_s ?? 0) - (frames[0].start_time_s ?? 0)).toFixed(3)} s`],
       ['gimbal az / el', `${(((info.gimbal_az_rad ?? 0) * 180) / Math.PI).toFixed(3)} / ${(((info.gimbal_el_rad ?? 0) * 180) / Math.PI).toFixed(3)} deg`],
       ['returns', p.n],
-      ['target', target === null ? 'none (no cue, no detections)' : `object ${target}`],
+      ['target', targetText],
       ['range to target', targetBox ? `${Math.hypot(...targetBox.box_sensor.centre_m).toFixed(1)} m` : '-'],
       ['target returns', target === null ? '-' : targetReturns],
       ['L2', perFrame?.l2_m != null ? `${perFrame.l2_m.toFixed(3)} m` : '-'],
