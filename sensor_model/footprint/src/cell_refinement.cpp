@@ -14,9 +14,6 @@ namespace ladarsim::sensor_model {
 
 namespace {
 
-/// The key of a leaf's echo among the beam's (0: not a leaf's), for the settling pass.
-constexpr std::uint32_t leaf_key(std::size_t k) { return std::uint32_t{1} << 24 | static_cast<std::uint32_t>(k); }
-
 /// Whether a region's sub-rays met the recorded map.
 bool cells_meet_map(const RefinementRegion& region) {
     return std::any_of(region.nodes.begin(), region.nodes.end(), [](const RefinementRegion::Node& n) {

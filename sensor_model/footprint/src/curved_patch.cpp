@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "ladarsim/scene/scene.h"
-#include "patch_probes.h"
 #include "sub_ray_seen.h"
 
 namespace ladarsim::sensor_model {
@@ -25,10 +24,15 @@ CurvedPatch::CurvedPatch(const FootprintContext& context) : context_(context) {
 }
 
 Integration CurvedPatch::integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const {
+    thread_local PatchProbes probes;
+    probes.gather(context_.shape.footprint(), beam.probes, part.excluded);
+    return integrate(beam, part, probes, out);
+}
+
+Integration CurvedPatch::integrate(const BeamSetting& beam, const FootprintPart& part, const PatchProbes& probes,
+                                   BeamEchoes& out) const {
     const Footprint& footprint = context_.shape.footprint();
     const double weight = part.share;
-    thread_local PatchProbes probes;
-    probes.gather(footprint, beam.probes, part.excluded);
     if (!probes.one_surface_met()) return {Outcome::declined};
     const std::span<const Probe* const> used = probes.used;
     // The probes' mean normal, weighted by the beam's irradiance.

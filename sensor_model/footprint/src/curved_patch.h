@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "footprint_context.h"
+#include "patch_probes.h"
 #include "ladarsim/sensor_model/footprint/curved_patch_fit.h"
 #include "ladarsim/sensor_model/footprint/footprint_strategy.h"
 
@@ -17,6 +18,9 @@ public:
     /// probes all met one object that is not a recorded map (whose structure in range is what its
     /// sub-rays are for), make one surface in range order and share one material; declined else.
     Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
+    /// The same from the probes that speak for the part, gathered already (a plane patch's, which
+    /// asks this where its probes leave every plane).
+    Integration integrate(const BeamSetting& beam, const FootprintPart& part, const PatchProbes& probes, BeamEchoes& out) const;
 
 private:
     const FootprintContext& context_;

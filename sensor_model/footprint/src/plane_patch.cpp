@@ -43,7 +43,7 @@ Integration PlanePatch::integrate(const BeamSetting& beam, const FootprintPart& 
     for (std::size_t k = 0; k < probes.used.size(); ++k) {
         const Probe& p = *probes.used[k];
         const Eigen::Vector3d& point = p.hit->point_world;
-        if (std::abs(normal.dot(point - centroid)) > gap) return curved_.integrate(beam, part, out);
+        if (std::abs(normal.dot(point - centroid)) > gap) return curved_.integrate(beam, part, probes, out);
         const double nd = normal.dot(p.direction_world);
         if (std::abs(nd) < 1e-9) return {Outcome::declined};
         // What the plane predicts the probe saw: reflectance |nd| / range^2 at the range

@@ -5,7 +5,6 @@
 #include <Eigen/Core>
 
 #include "curved_patch.h"
-#include "patch_probes.h"
 #include "footprint_context.h"
 #include "ladarsim/sensor_model/footprint/footprint_strategy.h"
 

@@ -30,6 +30,12 @@ constexpr std::uint32_t first_cell_number(int base, int splits_x, int splits_y) 
     return n;
 }
 
+/// The key a leaf's echo carries among the beam's (SurfaceEcho::sample), so that the settling pass
+/// finds the cell of each echo after they are sorted; earlier stages' echoes carry 0.
+constexpr std::uint32_t leaf_key(std::size_t node) { return std::uint32_t{1} << 24 | static_cast<std::uint32_t>(node); }
+/// The node a key names, or -1 for an echo that is not a leaf's.
+constexpr std::int64_t node_of_key(std::uint32_t key) { return key >> 24 == 0 ? -1 : std::int64_t{key & 0xFFFFFFu}; }
+
 /// One rectangle of offsets refined as a tree of cells of equal energy density, in the coordinates
 /// of the two axis CDFs (a cell then carries the energy of its area): cells split where their
 /// sub-rays disagree with their neighbours', along the axis across which they disagree, so that a

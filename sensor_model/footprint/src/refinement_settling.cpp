@@ -93,9 +93,8 @@ void SettlingPass::mark_leaves(RefinementRegion& r, const std::vector<SurfaceEch
         n.surface = -1;
     }
     for (std::size_t k = 0; k < echoes.size(); ++k) {
-        const std::uint32_t key = echoes[k].sample;
-        if (key >> 24 == 0) continue;
-        r.nodes[key & 0xFFFFFFu].surface = static_cast<std::int32_t>(surface_of_echo_[k]);
+        const std::int64_t node = node_of_key(echoes[k].sample);
+        if (node >= 0) r.nodes[static_cast<std::size_t>(node)].surface = static_cast<std::int32_t>(surface_of_echo_[k]);
     }
 }
 
