@@ -6,7 +6,7 @@
 #include <numbers>
 #include <map>
 #include <optional>
-#include <utility>
+#include <memory>
 #include <filesystem>
 
 #include <spdlog/spdlog.h>
@@ -173,42 +173,54 @@ void write_frame(const Frame& frame, double render_s, const StagingFiles& files)
                                     {"render_s", render_s}});
 }
 
-/// Writes each frame while the next one renders: encoding and writing a frame's files (zlib for
-/// the EXR, the file system's own work) took a quarter of a run's time on one core, and while it
-/// ran alone the other cores waited. One frame in flight bounds the memory; files are written in
-/// frame order, so an interruption leaves the same finished frames as writing in line would.
+/// Writes frames while the next ones render: encoding and writing a frame's files (zlib for the
+/// EXR, the file system's own work) took a sixth of a run's time on one core, and while it ran
+/// alone the other cores waited. Up to `in_flight` frames are written at once (one per thread:
+/// one writer would be the bottleneck of many cores), which bounds the memory. A frame is
+/// complete when its record is written, whatever the order, so an interruption leaves finished
+/// frames that --resume keeps, as writing in line would.
 class FrameWriter {
 public:
-    explicit FrameWriter(const StagingFiles& files) : files_(files) {}
+    FrameWriter(const StagingFiles& files, std::size_t in_flight) : files_(files), in_flight_(std::max<std::size_t>(1, in_flight)) {}
     FrameWriter(const FrameWriter&) = delete;
     FrameWriter& operator=(const FrameWriter&) = delete;
     ~FrameWriter() { writing_.wait(); }
-    /// Waits for the frame before, then starts writing this one. Returns the failure of the frame
-    /// before ("" if none).
+    /// Starts writing this frame, once fewer than `in_flight` are being written. Returns the
+    /// failure of a frame written before ("" if none).
     std::string write(Frame frame, double render_s) {
-        std::string failure = finish();
+        std::string failure;
+        if (pending_.size() == in_flight_) failure = finish();
         if (!failure.empty()) return failure;
-        pending_ = std::move(frame);
-        writing_.run([this, render_s] {
+        Pending& p = *pending_.emplace_back(std::make_unique<Pending>(Pending{std::move(frame), render_s, {}}));
+        writing_.run([this, &p] {
             try {
-                write_frame(pending_, render_s, files_);
+                write_frame(p.frame, p.render_s, files_);
             } catch (const std::exception& e) {
-                failure_ = "frame " + std::to_string(pending_.index) + ": " + e.what();
+                p.failure = "frame " + std::to_string(p.frame.index) + ": " + e.what();
             }
         });
         return {};
     }
-    /// Waits for the frame being written. Returns its failure ("" if none).
+    /// Waits for the frames being written. Returns the first one's failure ("" if none).
     std::string finish() {
         writing_.wait();
-        return std::exchange(failure_, std::string());
+        std::string failure;
+        for (const auto& p : pending_)
+            if (failure.empty()) failure = p->failure;
+        pending_.clear();
+        return failure;
     }
 
 private:
+    struct Pending {
+        Frame frame;
+        double render_s;
+        std::string failure;
+    };
     const StagingFiles& files_;
+    const std::size_t in_flight_;
     tbb::task_group writing_;
-    Frame pending_;
-    std::string failure_;
+    std::vector<std::unique_ptr<Pending>> pending_;
 };
 
 /// The frames below `frames` whose records are in the staging directory, in order. From the
@@ -269,7 +281,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     summary.out_dir = out;
     std::string failure;
     bool stopped = false;
-    FrameWriter writer(files);
+    FrameWriter writer(files, static_cast<std::size_t>(threads));
     // Every process takes the same number of turns, so that the collective checks line up.
     const int turns = (scenario.render.frames + team.size() - 1) / team.size();
     for (int turn = 0; turn < turns; ++turn) {
