@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 
 #include <pcl/io/ply_io.h>
@@ -15,6 +14,7 @@
 
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/scene/ply_file.h"
+#include "../support/scratch_dir.h"
 
 using namespace ladarsim::scene;
 using ladarsim::InputError;
@@ -22,16 +22,6 @@ using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device rd;
-        path = fs::temp_directory_path() / ("ladarsim-ply-" + std::to_string(rd()));
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
 
 pcl::PointCloud<pcl::PointXYZI> sample_cloud() {
     pcl::PointCloud<pcl::PointXYZI> cloud;
@@ -57,11 +47,11 @@ void put_big_endian(std::ofstream& out, T value) {
 }  // namespace
 
 TEST_CASE("ply_file: PCL's ASCII and binary PLY files read back with every point and field", "[ply_file]") {
-    TempDir dir;
+    ladarsim::test::ScratchDir dir;
     const auto cloud = sample_cloud();
     for (const bool binary : {false, true}) {
         INFO((binary ? "binary" : "ascii"));
-        const fs::path file = dir.path / (binary ? "b.ply" : "a.ply");
+        const fs::path file = dir.path() / (binary ? "b.ply" : "a.ply");
         REQUIRE(pcl::io::savePLYFile(file.string(), cloud, binary) == 0);
         const PlyVertices ply = read_ply(file);
         REQUIRE(ply.count == cloud.size());
@@ -78,8 +68,8 @@ TEST_CASE("ply_file: PCL's ASCII and binary PLY files read back with every point
 }
 
 TEST_CASE("ply_file: big-endian vertices after a face element with lists, integer types decoded", "[ply_file]") {
-    TempDir dir;
-    const fs::path file = dir.path / "mesh.ply";
+    ladarsim::test::ScratchDir dir;
+    const fs::path file = dir.path() / "mesh.ply";
     {
         std::ofstream out(file, std::ios::binary);
         out << "ply\r\nformat binary_big_endian 1.0\r\ncomment faces first\r\nelement face 2\r\n"
@@ -118,10 +108,10 @@ TEST_CASE("ply_file: big-endian vertices after a face element with lists, intege
 }
 
 TEST_CASE("ply_file: malformed files are refused naming the file and the line or element", "[ply_file]") {
-    TempDir dir;
+    ladarsim::test::ScratchDir dir;
     const auto refused = [&](const std::string& name, const std::string& text, const std::string& where) {
         INFO(name);
-        const fs::path file = dir.path / name;
+        const fs::path file = dir.path() / name;
         std::ofstream(file, std::ios::binary) << text;
         CHECK_THROWS_WITH(read_ply(file), Contains(name) && Contains(where));
     };
