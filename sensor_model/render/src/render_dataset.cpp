@@ -151,26 +151,35 @@ void prepare_staging(const std::filesystem::path& out, const StagingFiles& files
     }
 }
 
+/// What the dataset's manifest and ground truth take from a finished frame.
+struct FrameRecord {
+    nlohmann::json record;
+    FrameGroundTruth truth;
+};
+
 /// Writes a rendered frame into the staging directory: its PCD, EXR and ground truth, then its
 /// record (last: its presence says the frame is complete). `render_s`: the seconds its render took.
-void write_frame(const Frame& frame, double render_s, const StagingFiles& files) {
+FrameRecord write_frame(const Frame& frame, double render_s, const StagingFiles& files) {
     const int k = static_cast<int>(frame.index);
     const std::string stem = frame_file_stem(frame.index);
     write_frame_pcd(files.frames_dir / (stem + ".pcd"), frame);
     write_frame_exr(files.frames_dir / (stem + ".exr"), frame);
-    write_ground_truth_json(files.truth_of(k), {ground_truth_of(frame)});
+    FrameRecord written{{}, ground_truth_of(frame)};
+    write_ground_truth_json(files.truth_of(k), {written.truth});
     std::map<std::uint32_t, std::uint64_t> counts;
     for (const auto& r : frame.returns) ++counts[r.object_id];
     nlohmann::json by_object = nlohmann::json::object();
     for (const auto& [id, count] : counts) by_object[std::to_string(id)] = count;
-    write_json(files.record_of(k), {{"index", frame.index},
-                                    {"start_time_s", frame.start_time_s},
-                                    {"end_time_s", frame.end_time_s},
-                                    {"gimbal_az_rad", frame.gimbal_az_rad},
-                                    {"gimbal_el_rad", frame.gimbal_el_rad},
-                                    {"returns", frame.returns.size()},
-                                    {"returns_by_object", by_object},
-                                    {"render_s", render_s}});
+    written.record = {{"index", frame.index},
+                      {"start_time_s", frame.start_time_s},
+                      {"end_time_s", frame.end_time_s},
+                      {"gimbal_az_rad", frame.gimbal_az_rad},
+                      {"gimbal_el_rad", frame.gimbal_el_rad},
+                      {"returns", frame.returns.size()},
+                      {"returns_by_object", by_object},
+                      {"render_s", render_s}};
+    write_json(files.record_of(k), written.record);
+    return written;
 }
 
 /// Writes frames while the next ones render: encoding and writing a frame's files (zlib for the
@@ -191,10 +200,10 @@ public:
         std::string failure;
         if (pending_.size() == in_flight_) failure = finish();
         if (!failure.empty()) return failure;
-        Pending& p = *pending_.emplace_back(std::make_unique<Pending>(Pending{std::move(frame), render_s, {}}));
+        Pending& p = *pending_.emplace_back(std::make_unique<Pending>(Pending{std::move(frame), render_s, {}, {}}));
         writing_.run([this, &p] {
             try {
-                write_frame(p.frame, p.render_s, files_);
+                p.written = write_frame(p.frame, p.render_s, files_);
             } catch (const std::exception& e) {
                 p.failure = "frame " + std::to_string(p.frame.index) + ": " + e.what();
             }
@@ -205,22 +214,29 @@ public:
     std::string finish() {
         writing_.wait();
         std::string failure;
-        for (const auto& p : pending_)
+        for (const auto& p : pending_) {
             if (failure.empty()) failure = p->failure;
+            if (p->failure.empty()) written_.emplace(static_cast<int>(p->frame.index), std::move(p->written));
+        }
         pending_.clear();
         return failure;
     }
+    /// The records of the frames this writer finished, by frame index: the run's summary takes
+    /// them from here rather than reading back what it wrote.
+    std::map<int, FrameRecord>& written() { return written_; }
 
 private:
     struct Pending {
         Frame frame;
         double render_s;
         std::string failure;
+        FrameRecord written;
     };
     const StagingFiles& files_;
     const std::size_t in_flight_;
     tbb::task_group writing_;
     std::vector<std::unique_ptr<Pending>> pending_;
+    std::map<int, FrameRecord> written_;
 };
 
 /// The frames below `frames` whose records are in the staging directory, in order. From the
@@ -315,14 +331,19 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     nlohmann::json frame_log = nlohmann::json::array();
 
     for (const int k : finished_frames(files, scenario.render.frames)) {
-        nlohmann::json record = read_json(files.record_of(k));
+        // Frames of an interrupted run, or of another process, are read back from their files.
+        const auto here = writer.written().find(k);
+        FrameRecord finished = here != writer.written().end()
+                                   ? std::move(here->second)
+                                   : FrameRecord{read_json(files.record_of(k)), read_ground_truth_json(files.truth_of(k)).at(0)};
+        nlohmann::json& record = finished.record;
         for (const auto& [id, count] : record.at("returns_by_object").items())
             summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();
         record.erase("returns_by_object");
         summary.returns += record.at("returns").get<std::uint64_t>();
         summary.render_seconds += record.at("render_s").get<double>();
         pointings.push_back({record.at("gimbal_az_rad").get<double>(), record.at("gimbal_el_rad").get<double>()});
-        for (FrameGroundTruth& g : read_ground_truth_json(files.truth_of(k))) truth.push_back(std::move(g));
+        truth.push_back(std::move(finished.truth));
         frame_log.push_back(std::move(record));
     }
     summary.frames = static_cast<int>(frame_log.size());
