@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <memory>
+#include <exception>
 #include <filesystem>
 
 #include <spdlog/spdlog.h>
@@ -52,6 +53,26 @@ nlohmann::json render_json(const RenderSettings& r) {
             {"footprint_truncation", r.footprint_truncation}};
 }
 
+/// Where a run's frames looked: the survey needs the field the gimbal swept, not every pointing.
+struct PointingExtent {
+    int frames = 0;
+    GimbalPointing first{};
+    double az_lo = 0.0, az_hi = 0.0, el_lo = 0.0, el_hi = 0.0;
+    bool one_pointing = true;
+
+    void add(const GimbalPointing& p) {
+        if (frames++ == 0) {
+            first = p;
+            az_lo = az_hi = p.az_rad;
+            el_lo = el_hi = p.el_rad;
+            return;
+        }
+        one_pointing = one_pointing && p.az_rad == first.az_rad && p.el_rad == first.el_rad;
+        az_lo = std::min(az_lo, p.az_rad), az_hi = std::max(az_hi, p.az_rad);
+        el_lo = std::min(el_lo, p.el_rad), el_hi = std::max(el_hi, p.el_rad);
+    }
+};
+
 /// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
 /// and the objects that do not move, never a drone, bird or aircraft; noise off) over every
 /// direction the frames looked. When the gimbal moved, with beams at half the sensor's pitch over
@@ -62,8 +83,7 @@ nlohmann::json render_json(const RenderSettings& r) {
 /// Returns the number of points. The file is always written, with 0 points when the scene has
 /// nothing static (or nothing static in view): one rule, so that its absence means a recorded
 /// dataset.
-std::size_t write_background_map(const Scenario& scenario, const std::vector<GimbalPointing>& pointings,
-                                 const std::filesystem::path& file) {
+std::size_t write_background_map(const Scenario& scenario, const PointingExtent& looked, const std::filesystem::path& file) {
     Scenario survey = scenario;
     // What does not move, but never a target: a drone, bird or aircraft hovering still is not part
     // of the map a detector subtracts (it would subtract the target itself).
@@ -73,7 +93,7 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
                             o.object_class == ObjectClass::plane;
         return target || !o.trajectory.is_static();
     });
-    if ((survey.scene.objects.empty() && !survey.scene.background) || pointings.empty()) {
+    if ((survey.scene.objects.empty() && !survey.scene.background) || looked.frames == 0) {
         write_frame_pcd(file, Frame{});
         return 0;
     }
@@ -81,20 +101,13 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
     survey.render.noise = false;
     survey.render.jitter = false;
     survey.render.footprint_samples = 1;
-    const bool one_pointing = std::all_of(pointings.begin(), pointings.end(), [&](const GimbalPointing& p) {
-        return p.az_rad == pointings[0].az_rad && p.el_rad == pointings[0].el_rad;
-    });
-    if (one_pointing) {
+    if (looked.one_pointing) {
         FrameRenderer renderer(survey);
-        const Frame map = renderer.render_at(0, pointings[0]);
+        const Frame map = renderer.render_at(0, looked.first);
         write_frame_pcd(file, map);
         return map.returns.size();
     }
-    double az_lo = pointings[0].az_rad, az_hi = az_lo, el_lo = pointings[0].el_rad, el_hi = el_lo;
-    for (const auto& p : pointings) {
-        az_lo = std::min(az_lo, p.az_rad), az_hi = std::max(az_hi, p.az_rad);
-        el_lo = std::min(el_lo, p.el_rad), el_hi = std::max(el_hi, p.el_rad);
-    }
+    const double az_lo = looked.az_lo, az_hi = looked.az_hi, el_lo = looked.el_lo, el_hi = looked.el_hi;
     const ScanPattern& scan = *scenario.sensor.scan;
     const double pitch_az = scan.field_az_deg() * kDeg / scan.columns(), pitch_el = scan.field_el_deg() * kDeg / scan.rows();
     // The field swept by the gimbal, plus a tenth of the field on each side.
@@ -255,6 +268,41 @@ std::vector<int> finished_frames(const StagingFiles& files, int frames) {
     return finished;
 }
 
+/// The initial map's survey, run while the frames render: it needs only where they will look (the
+/// gimbal's replay), and run after them it kept the other cores waiting. Only the first process
+/// of a team surveys.
+class InitialMapSurvey {
+public:
+    InitialMapSurvey(const Scenario& scenario, const PointingExtent& looked, std::filesystem::path file) {
+        surveying_.run([this, &scenario, looked, file = std::move(file)] {
+            try {
+                points_ = write_background_map(scenario, looked, file);
+            } catch (...) {
+                failure_ = std::current_exception();
+            }
+        });
+    }
+    InitialMapSurvey(const InitialMapSurvey&) = delete;
+    InitialMapSurvey& operator=(const InitialMapSurvey&) = delete;
+    /// A run that stops before its end does not wait for its survey (millions of beams where the
+    /// gimbal swept far): it is cancelled, and surveyed again by the run that finishes.
+    ~InitialMapSurvey() {
+        surveying_.cancel();
+        surveying_.wait();
+    }
+    /// Waits for the survey; returns the map's points, or throws what the survey threw.
+    std::size_t points() {
+        surveying_.wait();
+        if (failure_) std::rethrow_exception(failure_);
+        return points_;
+    }
+
+private:
+    tbb::task_group surveying_;
+    std::size_t points_ = 0;
+    std::exception_ptr failure_;
+};
+
 }  // namespace
 
 DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) {
@@ -293,6 +341,14 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     if (first_process)
         for (const std::string& w : geometry_warnings(scenario, renderer, scenario.render.frames))
             spdlog::warn("{}: {}", scenario.file.string(), w);
+    std::optional<InitialMapSurvey> survey;
+    if (first_process) {
+        // The gimbal's replay: two angles a frame, checked for Ctrl-C as a run of millions goes.
+        PointingExtent looked;
+        for (int k = 0; k < scenario.render.frames && !(k % 65536 == 0 && options.stop && options.stop->load()); ++k)
+            looked.add(renderer.gimbal_pointing(static_cast<std::uint64_t>(k)));
+        if (!(options.stop && options.stop->load())) survey.emplace(scenario, looked, staging / "background.pcd");
+    }
     DatasetSummary summary;
     summary.out_dir = out;
     std::string failure;
@@ -327,7 +383,6 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
 
     // What is on disk now: every record, from whichever process wrote it.
     std::vector<FrameGroundTruth> truth;
-    std::vector<GimbalPointing> pointings;
     nlohmann::json frame_log = nlohmann::json::array();
 
     for (const int k : finished_frames(files, scenario.render.frames)) {
@@ -342,7 +397,6 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         record.erase("returns_by_object");
         summary.returns += record.at("returns").get<std::uint64_t>();
         summary.render_seconds += record.at("render_s").get<double>();
-        pointings.push_back({record.at("gimbal_az_rad").get<double>(), record.at("gimbal_el_rad").get<double>()});
         truth.push_back(std::move(finished.truth));
         frame_log.push_back(std::move(record));
     }
@@ -356,7 +410,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     if (!first_process) return summary;
 
     write_ground_truth_json(staging / "ground_truth.json", truth);
-    summary.background_points = write_background_map(scenario, pointings, staging / "background.pcd");
+    summary.background_points = survey->points();
     write_manifest(staging / "manifest.json",
                    {to_json(scenario.sensor), frame_log,
                     {{"scenario_file", std::filesystem::absolute(scenario.file).string()},
