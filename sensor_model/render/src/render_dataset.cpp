@@ -2,18 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <numbers>
-#include <map>
-#include <optional>
-#include <memory>
-#include <exception>
 #include <filesystem>
+#include <optional>
 
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
-#include <tbb/task_group.h>
 
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/dataset/frame_io.h"
@@ -22,9 +16,9 @@
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/core/json_file.h"
 #include "ladarsim/sensor_model/render/frame_renderer.h"
-#include "ladarsim/sensor_model/sensor/galvo_raster.h"
 #include "ladarsim/sensor_model/render/geometry_checks.h"
-#include "ladarsim/core/units.h"
+#include "frame_writer.h"
+#include "initial_map_survey.h"
 
 namespace ladarsim::sensor_model {
 
@@ -53,95 +47,6 @@ nlohmann::json render_json(const RenderSettings& r) {
             {"footprint_truncation", r.footprint_truncation}};
 }
 
-/// Where a run's frames looked: the survey needs the field the gimbal swept, not every pointing.
-struct PointingExtent {
-    int frames = 0;
-    GimbalPointing first{};
-    double az_lo = 0.0, az_hi = 0.0, el_lo = 0.0, el_hi = 0.0;
-    bool one_pointing = true;
-
-    void add(const GimbalPointing& p) {
-        if (frames++ == 0) {
-            first = p;
-            az_lo = az_hi = p.az_rad;
-            el_lo = el_hi = p.el_rad;
-            return;
-        }
-        one_pointing = one_pointing && p.az_rad == first.az_rad && p.el_rad == first.el_rad;
-        az_lo = std::min(az_lo, p.az_rad), az_hi = std::max(az_hi, p.az_rad);
-        el_lo = std::min(el_lo, p.el_rad), el_hi = std::max(el_hi, p.el_rad);
-    }
-};
-
-/// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
-/// and the objects that do not move, never a drone, bird or aircraft; noise off) over every
-/// direction the frames looked. When the gimbal moved, with beams at half the sensor's pitch over
-/// the field it swept, so that a static surface's returns in any frame fall among the survey's
-/// points; when every frame looked the same way (a fixed gimbal, a single frame), with the
-/// sensor's own beams there: its frames fired in no other direction, and the survey costs one
-/// frame's beams, not six. One centre sub-ray per beam: the map holds surfaces, not footprints.
-/// Returns the number of points. The file is always written, with 0 points when the scene has
-/// nothing static (or nothing static in view): one rule, so that its absence means a recorded
-/// dataset.
-std::size_t write_background_map(const Scenario& scenario, const PointingExtent& looked, const std::filesystem::path& file) {
-    Scenario survey = scenario;
-    // What does not move, but never a target: a drone, bird or aircraft hovering still is not part
-    // of the map a detector subtracts (it would subtract the target itself).
-    std::erase_if(survey.scene.objects, [](const scene::SceneObject& o) {
-        using scene::ObjectClass;
-        const bool target = o.object_class == ObjectClass::drone || o.object_class == ObjectClass::bird ||
-                            o.object_class == ObjectClass::plane;
-        return target || !o.trajectory.is_static();
-    });
-    if ((survey.scene.objects.empty() && !survey.scene.background) || looked.frames == 0) {
-        write_frame_pcd(file, Frame{});
-        return 0;
-    }
-    survey.mount.cue_object_id = 0;
-    survey.render.noise = false;
-    survey.render.jitter = false;
-    survey.render.footprint_samples = 1;
-    if (looked.one_pointing) {
-        FrameRenderer renderer(survey);
-        const Frame map = renderer.render_at(0, looked.first);
-        write_frame_pcd(file, map);
-        return map.returns.size();
-    }
-    const double az_lo = looked.az_lo, az_hi = looked.az_hi, el_lo = looked.el_lo, el_hi = looked.el_hi;
-    const ScanPattern& scan = *scenario.sensor.scan;
-    const double pitch_az = scan.field_az_deg() * kDeg / scan.columns(), pitch_el = scan.field_el_deg() * kDeg / scan.rows();
-    // The field swept by the gimbal, plus a tenth of the field on each side.
-    const double field_az = std::min(2.0 * std::numbers::pi, az_hi - az_lo + 1.2 * scan.field_az_deg() * kDeg);
-    const double field_el = std::min(std::numbers::pi, el_hi - el_lo + 1.2 * scan.field_el_deg() * kDeg);
-    // Half the sensor's pitch, coarsened if needed to stay within four million survey beams.
-    const double coarsen = std::max(1.0, std::sqrt(field_az / (0.5 * pitch_az) * field_el / (0.5 * pitch_el) / 4e6));
-    // Surveyed as by a galvo raster; a sensor without one is timed as a 1 kHz sawtooth (a static
-    // scene's survey times carry no information).
-    const auto* galvo = dynamic_cast<const GalvoRaster*>(&scan);
-    GalvoRaster::Parameters raster;
-    raster.field_az_deg = field_az / kDeg;
-    raster.field_el_deg = field_el / kDeg;
-    raster.beams_az = static_cast<int>(std::ceil(field_az / (0.5 * pitch_az * coarsen)));
-    raster.beams_el = static_cast<int>(std::ceil(field_el / (0.5 * pitch_el * coarsen)));
-    raster.galvo_rate_hz = galvo ? galvo->parameters().galvo_rate_hz : 1000.0;
-    raster.sweep = galvo ? galvo->parameters().sweep : GalvoSweep::sawtooth;
-    raster.frame_rate_hz = scan.frame_rate_hz();
-    survey.sensor.scan = std::make_shared<GalvoRaster>(raster);
-    FrameRenderer renderer(survey);
-    Frame map = renderer.render_at(0, GimbalPointing{0.5 * (az_lo + az_hi), 0.5 * (el_lo + el_hi)});
-    write_frame_pcd(file, map);
-    return map.returns.size();
-}
-
-/// The files of a render being staged beside its destination.
-struct StagingFiles {
-    std::filesystem::path staging, run_file, frames_dir;
-    explicit StagingFiles(const std::filesystem::path& dir) : staging(dir), run_file(dir / "run.json"), frames_dir(dir / "frames") {}
-    /// A finished frame's record (written last: its presence says the frame is complete) and ground truth.
-    std::filesystem::path record_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".log.json"); }
-    std::filesystem::path truth_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".truth.json"); }
-};
-
 /// Locks the staging directory and starts it afresh, or (with `resume`) keeps what an interrupted
 /// run of the same scenario, seed and frame count left there.
 void prepare_staging(const std::filesystem::path& out, const StagingFiles& files, const nlohmann::json& run_key, bool resume,
@@ -164,94 +69,6 @@ void prepare_staging(const std::filesystem::path& out, const StagingFiles& files
     }
 }
 
-/// What the dataset's manifest and ground truth take from a finished frame.
-struct FrameRecord {
-    nlohmann::json record;
-    FrameGroundTruth truth;
-};
-
-/// Writes a rendered frame into the staging directory: its PCD, EXR and ground truth, then its
-/// record (last: its presence says the frame is complete). `render_s`: the seconds its render took.
-FrameRecord write_frame(const Frame& frame, double render_s, const StagingFiles& files) {
-    const int k = static_cast<int>(frame.index);
-    const std::string stem = frame_file_stem(frame.index);
-    write_frame_pcd(files.frames_dir / (stem + ".pcd"), frame);
-    write_frame_exr(files.frames_dir / (stem + ".exr"), frame);
-    FrameRecord written{{}, ground_truth_of(frame)};
-    write_ground_truth_json(files.truth_of(k), {written.truth});
-    std::map<std::uint32_t, std::uint64_t> counts;
-    for (const auto& r : frame.returns) ++counts[r.object_id];
-    nlohmann::json by_object = nlohmann::json::object();
-    for (const auto& [id, count] : counts) by_object[std::to_string(id)] = count;
-    written.record = {{"index", frame.index},
-                      {"start_time_s", frame.start_time_s},
-                      {"end_time_s", frame.end_time_s},
-                      {"gimbal_az_rad", frame.gimbal_az_rad},
-                      {"gimbal_el_rad", frame.gimbal_el_rad},
-                      {"returns", frame.returns.size()},
-                      {"returns_by_object", by_object},
-                      {"render_s", render_s}};
-    write_json(files.record_of(k), written.record);
-    return written;
-}
-
-/// Writes frames while the next ones render: encoding and writing a frame's files (zlib for the
-/// EXR, the file system's own work) took a sixth of a run's time on one core, and while it ran
-/// alone the other cores waited. Up to `in_flight` frames are written at once (one per thread:
-/// one writer would be the bottleneck of many cores), which bounds the memory. A frame is
-/// complete when its record is written, whatever the order, so an interruption leaves finished
-/// frames that --resume keeps, as writing in line would.
-class FrameWriter {
-public:
-    FrameWriter(const StagingFiles& files, std::size_t in_flight) : files_(files), in_flight_(std::max<std::size_t>(1, in_flight)) {}
-    FrameWriter(const FrameWriter&) = delete;
-    FrameWriter& operator=(const FrameWriter&) = delete;
-    ~FrameWriter() { writing_.wait(); }
-    /// Starts writing this frame, once fewer than `in_flight` are being written. Returns the
-    /// failure of a frame written before ("" if none).
-    std::string write(Frame frame, double render_s) {
-        std::string failure;
-        if (pending_.size() == in_flight_) failure = finish();
-        if (!failure.empty()) return failure;
-        Pending& p = *pending_.emplace_back(std::make_unique<Pending>(Pending{std::move(frame), render_s, {}, {}}));
-        writing_.run([this, &p] {
-            try {
-                p.written = write_frame(p.frame, p.render_s, files_);
-            } catch (const std::exception& e) {
-                p.failure = "frame " + std::to_string(p.frame.index) + ": " + e.what();
-            }
-        });
-        return {};
-    }
-    /// Waits for the frames being written. Returns the first one's failure ("" if none).
-    std::string finish() {
-        writing_.wait();
-        std::string failure;
-        for (const auto& p : pending_) {
-            if (failure.empty()) failure = p->failure;
-            if (p->failure.empty()) written_.emplace(static_cast<int>(p->frame.index), std::move(p->written));
-        }
-        pending_.clear();
-        return failure;
-    }
-    /// The records of the frames this writer finished, by frame index: the run's summary takes
-    /// them from here rather than reading back what it wrote.
-    std::map<int, FrameRecord>& written() { return written_; }
-
-private:
-    struct Pending {
-        Frame frame;
-        double render_s;
-        std::string failure;
-        FrameRecord written;
-    };
-    const StagingFiles& files_;
-    const std::size_t in_flight_;
-    tbb::task_group writing_;
-    std::vector<std::unique_ptr<Pending>> pending_;
-    std::map<int, FrameRecord> written_;
-};
-
 /// The frames below `frames` whose records are in the staging directory, in order. From the
 /// directory, not frame by frame: after Ctrl-C early in a run of millions of frames, asking for
 /// each would take seconds.
@@ -268,40 +85,38 @@ std::vector<int> finished_frames(const StagingFiles& files, int frames) {
     return finished;
 }
 
-/// The initial map's survey, run while the frames render: it needs only where they will look (the
-/// gimbal's replay), and run after them it kept the other cores waiting. Only the first process
-/// of a team surveys.
-class InitialMapSurvey {
-public:
-    InitialMapSurvey(const Scenario& scenario, const PointingExtent& looked, std::filesystem::path file) {
-        surveying_.run([this, &scenario, looked, file = std::move(file)] {
-            try {
-                points_ = write_background_map(scenario, looked, file);
-            } catch (...) {
-                failure_ = std::current_exception();
-            }
-        });
-    }
-    InitialMapSurvey(const InitialMapSurvey&) = delete;
-    InitialMapSurvey& operator=(const InitialMapSurvey&) = delete;
-    /// A run that stops before its end does not wait for its survey (millions of beams where the
-    /// gimbal swept far): it is cancelled, and surveyed again by the run that finishes.
-    ~InitialMapSurvey() {
-        surveying_.cancel();
-        surveying_.wait();
-    }
-    /// Waits for the survey; returns the map's points, or throws what the survey threw.
-    std::size_t points() {
-        surveying_.wait();
-        if (failure_) std::rethrow_exception(failure_);
-        return points_;
-    }
+/// Starts the initial map's survey: the gimbal's replay over every frame (two angles a frame,
+/// checked for Ctrl-C as a run of millions goes) gives the field it needs.
+void start_survey(const Scenario& scenario, FrameRenderer& renderer, const std::atomic<bool>* stop, const std::filesystem::path& file,
+                  std::optional<InitialMapSurvey>& survey) {
+    const auto stopped = [stop] { return stop && stop->load(); };
+    PointingExtent looked;
+    for (int k = 0; k < scenario.render.frames && !(k % 65536 == 0 && stopped()); ++k)
+        looked.add(renderer.gimbal_pointing(static_cast<std::uint64_t>(k)));
+    if (!stopped()) survey.emplace(scenario, looked, file);
+}
 
-private:
-    tbb::task_group surveying_;
-    std::size_t points_ = 0;
-    std::exception_ptr failure_;
-};
+/// What is on disk now, every finished frame's record from whichever process wrote it, into the
+/// summary, the manifest's frame log and the ground truth. The writer's own frames come from
+/// memory; those of an interrupted run, or of another process, are read back from their files.
+void collect_frames(const StagingFiles& files, int frames, FrameWriter& writer, DatasetSummary& summary,
+                    std::vector<FrameGroundTruth>& truth, nlohmann::json& frame_log) {
+    for (const int k : finished_frames(files, frames)) {
+        const auto here = writer.written().find(k);
+        FrameRecord finished = here != writer.written().end()
+                                   ? std::move(here->second)
+                                   : FrameRecord{read_json(files.record_of(k)), read_ground_truth_json(files.truth_of(k)).at(0)};
+        nlohmann::json& record = finished.record;
+        for (const auto& [id, count] : record.at("returns_by_object").items())
+            summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();
+        record.erase("returns_by_object");
+        summary.returns += record.at("returns").get<std::uint64_t>();
+        summary.render_seconds += record.at("render_s").get<double>();
+        truth.push_back(std::move(finished.truth));
+        frame_log.push_back(std::move(record));
+    }
+    summary.frames = static_cast<int>(frame_log.size());
+}
 
 }  // namespace
 
@@ -326,7 +141,6 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
 
     // Frames are independent given the scenario and seed (the gimbal is replayed from frame 0), so
     // the frames an interrupted run left are exactly what this one would render again.
-    std::string setup_error;
     if (first_process) {
         try {
             prepare_staging(out, files, run_key, options.resume, staging_lock);
@@ -342,13 +156,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         for (const std::string& w : geometry_warnings(scenario, renderer, scenario.render.frames))
             spdlog::warn("{}: {}", scenario.file.string(), w);
     std::optional<InitialMapSurvey> survey;
-    if (first_process) {
-        // The gimbal's replay: two angles a frame, checked for Ctrl-C as a run of millions goes.
-        PointingExtent looked;
-        for (int k = 0; k < scenario.render.frames && !(k % 65536 == 0 && options.stop && options.stop->load()); ++k)
-            looked.add(renderer.gimbal_pointing(static_cast<std::uint64_t>(k)));
-        if (!(options.stop && options.stop->load())) survey.emplace(scenario, looked, staging / "background.pcd");
-    }
+    if (first_process) start_survey(scenario, renderer, options.stop, staging / "background.pcd", survey);
     DatasetSummary summary;
     summary.out_dir = out;
     std::string failure;
@@ -381,26 +189,9 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
                            staging.string() + " (continue with --resume, or delete it to free its space)");
     }
 
-    // What is on disk now: every record, from whichever process wrote it.
     std::vector<FrameGroundTruth> truth;
     nlohmann::json frame_log = nlohmann::json::array();
-
-    for (const int k : finished_frames(files, scenario.render.frames)) {
-        // Frames of an interrupted run, or of another process, are read back from their files.
-        const auto here = writer.written().find(k);
-        FrameRecord finished = here != writer.written().end()
-                                   ? std::move(here->second)
-                                   : FrameRecord{read_json(files.record_of(k)), read_ground_truth_json(files.truth_of(k)).at(0)};
-        nlohmann::json& record = finished.record;
-        for (const auto& [id, count] : record.at("returns_by_object").items())
-            summary.returns_by_object[static_cast<std::uint32_t>(std::stoul(id))] += count.get<std::uint64_t>();
-        record.erase("returns_by_object");
-        summary.returns += record.at("returns").get<std::uint64_t>();
-        summary.render_seconds += record.at("render_s").get<double>();
-        truth.push_back(std::move(finished.truth));
-        frame_log.push_back(std::move(record));
-    }
-    summary.frames = static_cast<int>(frame_log.size());
+    collect_frames(files, scenario.render.frames, writer, summary, truth, frame_log);
     summary.beams_per_second =
         summary.render_seconds > 0.0 ? double(renderer.raster().beam_count()) * summary.frames / summary.render_seconds : 0.0;
     if (stopped || summary.frames < scenario.render.frames) {
