@@ -75,7 +75,8 @@ std::vector<std::string> foreign_entries(const std::filesystem::path& out, const
 }  // namespace
 
 bool is_dataset_entry(const std::string& name) {
-    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd";
+    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd" ||
+           name == "poses.txt";
 }
 
 std::optional<std::vector<std::string>> owned_entries(const std::filesystem::path& dir) {

@@ -7,6 +7,7 @@
 #include "ladarsim/dataset/manifest.h"
 #include "ladarsim/sensor_model/render/render_dataset.h"
 #include "ladarsim/dataset/frame_pcd.h"
+#include "ladarsim/dataset/poses_file.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 #include "../support/scratch_dir.h"
@@ -58,4 +59,39 @@ TEST_CASE("the initial map holds the static world only: a drone hovering still i
     // The frame itself sees the drone.
     const std::vector<Return> frame = read_frame_pcd(dir / "d" / "frames" / "000000.pcd");
     CHECK(std::count_if(frame.begin(), frame.end(), [](const Return& r) { return r.object_id == 2; }) > 0);
+}
+
+TEST_CASE("poses.txt holds the sensor's world-from-sensor pose, which takes a frame's points onto the world's wall", "[render_dataset]") {
+    const test::ScratchDir dir;
+    Scenario s = test::closed_form_scenario();
+    s.file = dir / "scenario.json";
+    s.render.noise = false;
+    // The sensor at (5, -3, 2) turned 90 deg to the left: its +x looks along the world's +y, at a
+    // wall 300 m away facing it.
+    s.mount.position_world = {5.0, -3.0, 2.0};
+    s.mount.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitZ()));
+    scene::SceneObject wall = test::object_at(
+        1, test::plate(40.0, 0.3),
+        scene::Trajectory::fixed(scene::Pose{{5.0, 297.0, 2.0}, Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitZ()))}),
+        scene::ObjectClass::building);
+    s.scene.objects = {wall};
+    DatasetOptions options;
+    options.out_dir = dir / "d";
+    options.frames = 2;
+    render_dataset(s, options);
+    const std::vector<Eigen::Isometry3d> poses = read_poses_txt(dir / "d" / "poses.txt");
+    REQUIRE(poses.size() == 2);
+    Eigen::Matrix<double, 3, 4> expected;
+    expected << 0, -1, 0, 5,
+                1, 0, 0, -3,
+                0, 0, 1, 2;
+    for (const auto& pose : poses) CHECK((pose.matrix().topRows<3>() - expected).cwiseAbs().maxCoeff() < 1e-12);
+    const std::vector<Return> frame = read_frame_pcd(dir / "d" / "frames" / "000001.pcd");
+    REQUIRE(frame.size() > 100);
+    for (const Return& r : frame) {
+        const Eigen::Vector3d world = poses[1] * r.position_sensor.cast<double>();
+        CHECK(world.y() == Approx(297.0).margin(0.01));
+        CHECK(std::abs(world.x() - 5.0) < 20.0);
+        CHECK(std::abs(world.z() - 2.0) < 20.0);
+    }
 }

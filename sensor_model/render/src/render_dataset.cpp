@@ -13,6 +13,7 @@
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/dataset/manifest.h"
+#include "ladarsim/dataset/poses_file.h"
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/core/json_file.h"
 #include "ladarsim/sensor_model/render/frame_renderer.h"
@@ -201,6 +202,9 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     if (!first_process) return summary;
 
     write_ground_truth_json(staging / "ground_truth.json", truth);
+    // The sensor stands still on its mount: every frame has the mount's pose.
+    write_poses_txt(staging / "poses.txt",
+                    std::vector<Eigen::Isometry3d>(static_cast<std::size_t>(summary.frames), scenario.mount.world_from_sensor()));
     summary.background_points = survey->points();
     write_manifest(staging / "manifest.json",
                    {to_json(scenario.sensor), frame_log,
