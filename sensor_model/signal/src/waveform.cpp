@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <map>
+#include <mutex>
 #include <numbers>
 
 #include <unsupported/Eigen/FFT>
@@ -21,8 +23,15 @@ constexpr std::size_t kShortWindow = 2048;  // bins (38 m): built whole, cheaper
 
 WaveformReceiver::WaveformReceiver(const ApdReceiver& apd, double pulse_fwhm_s, double bin_s)
     : apd_(apd), pulse_(PulseShape::of(pulse_fwhm_s)), fwhm_s_(pulse_fwhm_s), bin_s_(bin_s) {
-    RandomSequence bank_draws(0, RandomStream::waveform_noise, 0, 0xFFFFFFFFu);
-    noise_bank_ = band_limited_noise(kNoiseBank, bank_draws);
+    static std::mutex banks_mutex;
+    static std::map<double, std::shared_ptr<const std::vector<double>>> banks;  // by bandwidth x bin
+    const std::lock_guard lock(banks_mutex);
+    auto& bank = banks[apd_.bandwidth_hz() * bin_s_];
+    if (!bank) {
+        RandomSequence bank_draws(0, RandomStream::waveform_noise, 0, 0xFFFFFFFFu);
+        bank = std::make_shared<const std::vector<double>>(band_limited_noise(kNoiseBank, bank_draws));
+    }
+    noise_bank_ = bank;
 }
 
 PulseShape WaveformReceiver::shape_of(const Echo& e) const {
@@ -217,7 +226,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     n.assign(bins, 0.0);
     if (noise && bins <= kNoiseBank / 8) {
         const auto start = static_cast<std::size_t>(noise->uniform() * static_cast<double>(kNoiseBank - bins));
-        std::copy_n(noise_bank_.begin() + static_cast<std::ptrdiff_t>(start), bins, n.begin());
+        std::copy_n(noise_bank_->begin() + static_cast<std::ptrdiff_t>(start), bins, n.begin());
     } else if (noise) {
         n = band_limited_noise(bins, *noise);  // a window longer than the bank can spare
     }

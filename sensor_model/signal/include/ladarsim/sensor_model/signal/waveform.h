@@ -4,6 +4,7 @@
 // and peaks are found the way the sensor's discriminator would.
 #include <cstdint>
 #include <span>
+#include <memory>
 #include <vector>
 
 #include "ladarsim/sensor_model/signal/apd_receiver.h"
@@ -85,7 +86,10 @@ private:
     PulseShape pulse_;
     double fwhm_s_;
     double bin_s_;
-    std::vector<double> noise_bank_;
+    /// Shared by every receiver of the same bandwidth and sampling in the process (drawn from a
+    /// fixed stream): a run builds two receivers, a campaign hundreds, and drawing it took half the
+    /// time of a one-frame run.
+    std::shared_ptr<const std::vector<double>> noise_bank_;
 };
 
 }  // namespace ladarsim::sensor_model
