@@ -75,7 +75,9 @@ public:
         }
         busy_ = false;
         ++next_;
-        return python_frame(frame);
+        PythonFrame f = python_frame(frame);
+        f.pose = pose_array(scenario_->mount.world_from_sensor());
+        return f;
     }
 
     int frames() const { return scenario_->render.frames; }
