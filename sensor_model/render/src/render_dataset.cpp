@@ -16,6 +16,7 @@
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/dataset/manifest.h"
+#include "ladarsim/dataset/waveform_file.h"
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/core/json_file.h"
 #include "ladarsim/sensor_model/render/frame_renderer.h"
@@ -39,15 +40,18 @@ nlohmann::json mount_json(const SensorMount& m) {
 }
 
 nlohmann::json render_json(const RenderSettings& r) {
-    return {{"frames", r.frames},
-            {"seed", r.seed},
-            {"start_time_s", r.start_time_s},
-            {"motion_steps", r.motion_steps},
-            {"jitter", r.jitter},
-            {"noise", r.noise},
-            {"footprint_samples", r.footprint_samples},
-            {"footprint_tolerance", r.footprint_tolerance},
-            {"footprint_truncation", r.footprint_truncation}};
+    nlohmann::json j = {{"frames", r.frames},
+                        {"seed", r.seed},
+                        {"start_time_s", r.start_time_s},
+                        {"motion_steps", r.motion_steps},
+                        {"jitter", r.jitter},
+                        {"noise", r.noise},
+                        {"footprint_samples", r.footprint_samples},
+                        {"footprint_tolerance", r.footprint_tolerance},
+                        {"footprint_truncation", r.footprint_truncation}};
+    // Only when on: a render without waveforms keeps the manifest it always had.
+    if (r.waveforms) j["waveforms"] = true;
+    return j;
 }
 
 /// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
@@ -79,6 +83,7 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
     survey.render.noise = false;
     survey.render.jitter = false;
     survey.render.footprint_samples = 1;
+    survey.render.waveforms = false;  // the map is a survey's points, not a sensor's frame
     const bool one_pointing = std::all_of(pointings.begin(), pointings.end(), [&](const GimbalPointing& p) {
         return p.az_rad == pointings[0].az_rad && p.el_rad == pointings[0].el_rad;
     });
@@ -120,8 +125,9 @@ std::size_t write_background_map(const Scenario& scenario, const std::vector<Gim
 
 /// The files of a render being staged beside its destination.
 struct StagingFiles {
-    std::filesystem::path staging, run_file, frames_dir;
-    explicit StagingFiles(const std::filesystem::path& dir) : staging(dir), run_file(dir / "run.json"), frames_dir(dir / "frames") {}
+    std::filesystem::path staging, run_file, frames_dir, waveforms_dir;
+    explicit StagingFiles(const std::filesystem::path& dir)
+        : staging(dir), run_file(dir / "run.json"), frames_dir(dir / "frames"), waveforms_dir(dir / "waveforms") {}
     /// A finished frame's record (written last: its presence says the frame is complete) and ground truth.
     std::filesystem::path record_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".log.json"); }
     std::filesystem::path truth_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".truth.json"); }
@@ -149,8 +155,9 @@ void prepare_staging(const std::filesystem::path& out, const StagingFiles& files
     }
 }
 
-/// Renders frame `k` into the staging directory: its PCD, EXR and ground truth, then its record.
-void render_frame(FrameRenderer& renderer, int k, const StagingFiles& files) {
+/// Renders frame `k` into the staging directory: its PCD, EXR, ground truth and (with `waveforms`)
+/// waveforms, then its record.
+void render_frame(FrameRenderer& renderer, int k, const StagingFiles& files, bool waveforms) {
     using Clock = std::chrono::steady_clock;
     const auto started = Clock::now();
     const Frame frame = renderer.render(static_cast<std::uint64_t>(k));
@@ -159,6 +166,10 @@ void render_frame(FrameRenderer& renderer, int k, const StagingFiles& files) {
     write_frame_pcd(files.frames_dir / (stem + ".pcd"), frame);
     write_frame_exr(files.frames_dir / (stem + ".exr"), frame);
     write_ground_truth_json(files.truth_of(k), {ground_truth_of(frame)});
+    if (waveforms) {
+        std::filesystem::create_directories(files.waveforms_dir);
+        write_waveforms_h5(files.waveforms_dir / (stem + ".h5"), renderer.waveforms_last_frame());
+    }
     std::map<std::uint32_t, std::uint64_t> counts;
     for (const auto& r : frame.returns) ++counts[r.object_id];
     nlohmann::json by_object = nlohmann::json::object();
@@ -239,7 +250,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
         if (!stopped && k < scenario.render.frames && !std::filesystem::exists(files.record_of(k))) {
             try {
                 if (k == options.fail_at_frame) throw std::runtime_error("failure injected for testing");
-                render_frame(renderer, k, files);
+                render_frame(renderer, k, files, scenario.render.waveforms);
             } catch (const std::exception& e) {
                 failure = "frame " + std::to_string(k) + ": " + e.what();
             }
