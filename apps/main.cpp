@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
     apps::add_import_velodyne_command(app, exit_code);
     apps::add_import_ouster_command(app, exit_code);
     apps::add_export_kitti_command(app, exit_code);
+    apps::add_export_las_command(app, exit_code);
     apps::add_make_assets_command(app, exit_code);
     apps::add_preview_command(app, exit_code);
     apps::add_view_command(app, exit_code);

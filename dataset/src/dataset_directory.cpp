@@ -76,7 +76,7 @@ std::vector<std::string> foreign_entries(const std::filesystem::path& out, const
 
 bool is_dataset_entry(const std::string& name) {
     return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd" ||
-           name == "poses.txt";
+           name == "poses.txt" || name == "waveforms";
 }
 
 std::optional<std::vector<std::string>> owned_entries(const std::filesystem::path& dir) {
@@ -118,6 +118,8 @@ bool is_mount_point(const std::filesystem::path& dir) {
 const OutputLayout& dataset_layout() {
     static const OutputLayout layout{"dataset", is_dataset_entry, [](const std::string& relative) {
                                          const auto path = std::filesystem::path(relative);
+                                         static const std::regex waveform_file(R"(\d{6,}\.h5(\.tmp)?)");
+                                         if (path.parent_path() == "waveforms") return std::regex_match(path.filename().string(), waveform_file);
                                          return path.parent_path() == "frames" && is_frame_file(path.filename().string());
                                      }};
     return layout;

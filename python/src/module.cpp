@@ -40,6 +40,7 @@ detect(dataset, ...)       Algorithm 1 over a dataset, as `ladarsim detect` repo
 evaluate(dataset, report)  the scores of its boxes, as `ladarsim eval --json` writes them
 benchmark(dataset, ...)    a detector run and scored with EAO, as `ladarsim benchmark --json`
 Sensor.preset(name)        a sensor, its document and derived quantities
+read_waveforms(file)       a frame's full waveforms (render.waveforms) as NumPy arrays
 InputError                 bad input (a ValueError), naming the file, field and problem)";
     m.attr("__version__") = ladarsim::software_json().at("version").get<std::string>();
     bind_errors(m);
@@ -49,4 +50,5 @@ InputError                 bad input (a ValueError), naming the file, field and 
     bind_datasets(m);
     bind_campaigns(m);
     bind_detection(m);
+    bind_waveforms(m);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -20,6 +21,22 @@ GimbalPointing initial_pointing(const SensorMount& mount, GimbalPointing cue, bo
     if (mount.gimbal_az_deg) p.az_rad = *mount.gimbal_az_deg * kDeg;
     if (mount.gimbal_el_deg) p.el_rad = *mount.gimbal_el_deg * kDeg;
     return p;
+}
+
+/// A frame's waveform record before its windows: the receiver constants its samples are read with.
+FrameWaveforms waveform_header(std::uint64_t frame, const Scenario& scenario, const BeamReceiver& receiver) {
+    FrameWaveforms w;
+    w.frame = frame;
+    const ApdReceiver& apd = receiver.apd();
+    w.receiver.sample_interval_s = receiver.waveform().bin_s();
+    w.receiver.pulse_fwhm_s = scenario.sensor.transmitter.pulse_width_ns * 1e-9;
+    w.receiver.threshold_a = apd.threshold_a();
+    w.receiver.release_a = 0.5 * apd.threshold_a();
+    w.receiver.noise_floor_a = apd.noise_floor_a();
+    w.receiver.saturation_a = apd.saturation_a();
+    // Frames report intensity as primary photo-electrons per joule on the detector (responsivity / q).
+    w.receiver.photoelectrons_per_coulomb = scenario.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c / apd.amps_per_watt();
+    return w;
 }
 
 /// What the footprint integrator takes of the scenario.
@@ -230,7 +247,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
 }
 
 std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_step, std::uint64_t frame,
-                                               std::uint64_t& rays) const {
+                                               std::uint64_t& rays, std::vector<WaveformWindow>* windows) const {
     const auto& sensor = scenario_.sensor;
     const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
@@ -269,7 +286,14 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
 
         const BeamKey key{scenario_.render.seed, frame, a.cell};
         std::uint8_t return_index = 0;
-        receiver_.receive(surfaces, key, detected);
+        const std::size_t windows_before = windows ? windows->size() : 0;
+        receiver_.receive(surfaces, key, detected, windows);
+        if (windows)
+            for (std::size_t w = windows_before; w < windows->size(); ++w) {
+                (*windows)[w].column = static_cast<std::uint16_t>(beam.column);
+                (*windows)[w].row = static_cast<std::uint16_t>(beam.row);
+                (*windows)[w].time_s = a.time_s;
+            }
         if (detected.empty()) continue;
         const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);
@@ -357,11 +381,23 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     const int stretches = (raster_.columns() + kStepsPerTask - 1) / kStepsPerTask;
     std::vector<std::vector<Return>> by_stretch(rows * static_cast<std::size_t>(stretches));
     std::vector<std::uint64_t> rays_by_stretch(by_stretch.size(), 0);
+    const bool record_waveforms = scenario_.render.waveforms;
+    std::vector<std::vector<WaveformWindow>> windows_by_stretch(record_waveforms ? by_stretch.size() : 0);
     tbb::parallel_for(0, static_cast<int>(by_stretch.size()), [&](int task) {
         const int row = task / stretches, first = (task % stretches) * kStepsPerTask;
-        by_stretch[static_cast<std::size_t>(task)] = trace_steps(row, first, std::min(first + kStepsPerTask, raster_.columns()), index,
-                                                                 rays_by_stretch[static_cast<std::size_t>(task)]);
+        const auto t = static_cast<std::size_t>(task);
+        by_stretch[t] = trace_steps(row, first, std::min(first + kStepsPerTask, raster_.columns()), index, rays_by_stretch[t],
+                                    record_waveforms ? &windows_by_stretch[t] : nullptr);
     });
+    waveforms_last_frame_ = {};
+    if (record_waveforms) {
+        waveforms_last_frame_ = waveform_header(index, scenario_, receiver_);
+        for (auto& piece : windows_by_stretch)
+            for (auto& w : piece) waveforms_last_frame_.windows.push_back(std::move(w));
+        // Stretches are in raster order already; a triangle sweep's odd lines fired right to left.
+        std::stable_sort(waveforms_last_frame_.windows.begin(), waveforms_last_frame_.windows.end(),
+                         [](const WaveformWindow& a, const WaveformWindow& b) { return std::tie(a.row, a.column) < std::tie(b.row, b.column); });
+    }
     std::vector<std::vector<Return>> by_row(rows);
     for (std::size_t row = 0; row < rows; ++row) {
         std::vector<Return>& returns = by_row[row];

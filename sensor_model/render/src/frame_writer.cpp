@@ -9,13 +9,18 @@ namespace ladarsim::sensor_model {
 
 namespace {
 
-/// Writes a rendered frame into the staging directory: its PCD, EXR and ground truth, then its
-/// record (last: its presence says the frame is complete). `render_s`: the seconds its render took.
-FrameRecord write_frame(const Frame& frame, double render_s, const StagingFiles& files) {
+/// Writes a rendered frame into the staging directory: its PCD, EXR, ground truth and waveforms
+/// (if given), then its record (last: its presence says the frame is complete). `render_s`: the
+/// seconds its render took.
+FrameRecord write_frame(const Frame& frame, double render_s, const std::optional<FrameWaveforms>& waveforms, const StagingFiles& files) {
     const int k = static_cast<int>(frame.index);
     const std::string stem = frame_file_stem(frame.index);
     write_frame_pcd(files.frames_dir / (stem + ".pcd"), frame);
     write_frame_exr(files.frames_dir / (stem + ".exr"), frame);
+    if (waveforms) {
+        std::filesystem::create_directories(files.waveforms_dir);
+        write_waveforms_h5(files.waveforms_dir / (stem + ".h5"), *waveforms);
+    }
     FrameRecord written{{}, ground_truth_of(frame)};
     write_ground_truth_json(files.truth_of(k), {written.truth});
     std::map<std::uint32_t, std::uint64_t> counts;
@@ -41,14 +46,14 @@ FrameWriter::FrameWriter(const StagingFiles& files, std::size_t in_flight)
 
 FrameWriter::~FrameWriter() { writing_.wait(); }
 
-std::string FrameWriter::write(Frame frame, double render_s) {
+std::string FrameWriter::write(Frame frame, double render_s, std::optional<FrameWaveforms> waveforms) {
     std::string failure;
     if (pending_.size() == in_flight_) failure = finish();
     if (!failure.empty()) return failure;
-    Pending& p = *pending_.emplace_back(std::make_unique<Pending>(Pending{std::move(frame), render_s, {}, {}}));
+    Pending& p = *pending_.emplace_back(std::make_unique<Pending>(Pending{std::move(frame), render_s, std::move(waveforms), {}, {}}));
     writing_.run([this, &p] {
         try {
-            p.written = write_frame(p.frame, p.render_s, files_);
+            p.written = write_frame(p.frame, p.render_s, p.waveforms, files_);
         } catch (const std::exception& e) {
             p.failure = "frame " + std::to_string(p.frame.index) + ": " + e.what();
         }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,13 +14,15 @@
 #include "ladarsim/dataset/frame.h"
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/ground_truth_file.h"
+#include "ladarsim/dataset/waveform_file.h"
 
 namespace ladarsim::sensor_model {
 
 /// The files of a render being staged beside its destination.
 struct StagingFiles {
-    std::filesystem::path staging, run_file, frames_dir;
-    explicit StagingFiles(const std::filesystem::path& dir) : staging(dir), run_file(dir / "run.json"), frames_dir(dir / "frames") {}
+    std::filesystem::path staging, run_file, frames_dir, waveforms_dir;
+    explicit StagingFiles(const std::filesystem::path& dir)
+        : staging(dir), run_file(dir / "run.json"), frames_dir(dir / "frames"), waveforms_dir(dir / "waveforms") {}
     /// A finished frame's record (written last: its presence says the frame is complete) and ground truth.
     std::filesystem::path record_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".log.json"); }
     std::filesystem::path truth_of(int k) const { return frames_dir / (frame_file_stem(static_cast<std::uint64_t>(k)) + ".truth.json"); }
@@ -43,9 +46,9 @@ public:
     FrameWriter(const FrameWriter&) = delete;
     FrameWriter& operator=(const FrameWriter&) = delete;
     ~FrameWriter();
-    /// Starts writing this frame, once fewer than `in_flight` are being written. Returns the
-    /// failure of a frame written before ("" if none).
-    std::string write(Frame frame, double render_s);
+    /// Starts writing this frame (and its waveforms, when the scenario asks for them), once fewer
+    /// than `in_flight` are being written. Returns the failure of a frame written before ("" if none).
+    std::string write(Frame frame, double render_s, std::optional<FrameWaveforms> waveforms);
     /// Waits for the frames being written. Returns the first one's failure ("" if none).
     std::string finish();
     /// The records of the frames this writer finished, by frame index: the run's summary takes
@@ -56,6 +59,7 @@ private:
     struct Pending {
         Frame frame;
         double render_s;
+        std::optional<FrameWaveforms> waveforms;
         std::string failure;
         FrameRecord written;
     };

@@ -42,6 +42,7 @@ std::size_t write_background_map(const Scenario& scenario, const PointingExtent&
     survey.render.noise = false;
     survey.render.jitter = false;
     survey.render.footprint_samples = 1;
+    survey.render.waveforms = false;  // the map is a survey's points, not a sensor's frame
     if (looked.one_pointing) {
         FrameRenderer renderer(survey);
         const Frame map = renderer.render_at(0, looked.first);

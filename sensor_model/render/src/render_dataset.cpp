@@ -37,15 +37,18 @@ nlohmann::json mount_json(const SensorMount& m) {
 }
 
 nlohmann::json render_json(const RenderSettings& r) {
-    return {{"frames", r.frames},
-            {"seed", r.seed},
-            {"start_time_s", r.start_time_s},
-            {"motion_steps", r.motion_steps},
-            {"jitter", r.jitter},
-            {"noise", r.noise},
-            {"footprint_samples", r.footprint_samples},
-            {"footprint_tolerance", r.footprint_tolerance},
-            {"footprint_truncation", r.footprint_truncation}};
+    nlohmann::json j = {{"frames", r.frames},
+                        {"seed", r.seed},
+                        {"start_time_s", r.start_time_s},
+                        {"motion_steps", r.motion_steps},
+                        {"jitter", r.jitter},
+                        {"noise", r.noise},
+                        {"footprint_samples", r.footprint_samples},
+                        {"footprint_tolerance", r.footprint_tolerance},
+                        {"footprint_truncation", r.footprint_truncation}};
+    // Only when on: a render without waveforms keeps the manifest it always had.
+    if (r.waveforms) j["waveforms"] = true;
+    return j;
 }
 
 /// Locks the staging directory and starts it afresh, or (with `resume`) keeps what an interrupted
@@ -174,7 +177,9 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
                 const auto started = std::chrono::steady_clock::now();
                 Frame frame = renderer.render(static_cast<std::uint64_t>(k));
                 const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-                failure = writer.write(std::move(frame), seconds);
+                std::optional<FrameWaveforms> waveforms;
+                if (scenario.render.waveforms) waveforms = renderer.waveforms_last_frame();
+                failure = writer.write(std::move(frame), seconds, std::move(waveforms));
             } catch (const std::exception& e) {
                 failure = "frame " + std::to_string(k) + ": " + e.what();
             }

@@ -68,7 +68,8 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
     return pulses;
 }
 
-void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& pulses) const {
+void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& pulses,
+                              std::vector<WaveformWindow>* windows) const {
     const double to_time = 2.0 / kSpeedOfLight_mps;
     // Each echo's kept pulse: kWindowSigmas of its own width each side of its centre.
     struct Reach {
@@ -112,11 +113,11 @@ void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* nois
         const auto bins = static_cast<std::size_t>(std::ceil((end - t0) / bin_s_)) + 1;
         // A long window (a grazing footprint's) is built only where pulses can be detected.
         if (bins <= kShortWindow) {
-            detect_window(window, t0, bins, noise, pulses);
+            detect_window(window, t0, bins, noise, pulses, windows);
         } else {
             for (const LiveSpan& live : live_spans(window, t0, bins, noise != nullptr))
                 detect_window(std::span(window).subspan(live.first_echo, live.echoes), t0 + live.first_bin * bin_s_, live.bins, noise,
-                              pulses);
+                              pulses, windows);
         }
         first = last;
     }
@@ -215,7 +216,7 @@ struct WaveformReceiver::Window {
 };
 
 void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
-                                     std::vector<DetectedPulse>& out) const {
+                                     std::vector<DetectedPulse>& out, std::vector<WaveformWindow>* windows) const {
     // Per-thread scratch: a beam's windows are a few hundred bins.
     thread_local std::vector<double> power, n, y, contribution;
     // Each echo's pulse shape, found once for the sum and the attribution of peaks below.
@@ -235,6 +236,11 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     const double saturation = apd_.saturation_a();
     for (std::size_t k = 0; k < bins; ++k)
         y[k] = std::min(amps_per_watt * power[k] + (noise ? apd_.noise_a(power[k]) * n[k] : 0.0), saturation);
+    if (windows) {
+        WaveformWindow& recorded = windows->emplace_back();
+        recorded.start_s = t0_s;
+        recorded.samples_a.assign(y.begin(), y.end());
+    }
 
     const double threshold = apd_.threshold_a();
     const double floor_noise = apd_.noise_floor_a();

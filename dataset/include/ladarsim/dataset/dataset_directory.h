@@ -17,7 +17,7 @@
 namespace ladarsim {
 
 /// Whether a directory entry named `name` at the top of a dataset is one a render writes there:
-/// frames/, manifest.json, ground_truth.json, background.pcd.
+/// frames/, manifest.json, ground_truth.json, background.pcd, waveforms/ (render.waveforms).
 bool is_dataset_entry(const std::string& name);
 
 /// The file in every directory ladarsim writes (a dataset, an export) listing the entries at its
@@ -50,7 +50,8 @@ struct OutputLayout {
     std::function<bool(const std::string& relative_path)> is_own_inside;
 };
 
-/// A dataset's layout: own entries is_dataset_entry's, frames/ holding only frame files.
+/// A dataset's layout: own entries is_dataset_entry's, frames/ holding only frame files,
+/// waveforms/ only NNNNNN.h5.
 const OutputLayout& dataset_layout();
 
 /// The output directory as an absolute path without a trailing separator (a symbolic link

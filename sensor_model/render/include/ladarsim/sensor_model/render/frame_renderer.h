@@ -44,6 +44,9 @@ public:
     const ScanPattern& raster() const { return raster_; }
     /// Rays traced for the last frame rendered (probes and sub-rays): the cost of its accuracy.
     std::uint64_t rays_last_frame() const { return rays_last_frame_; }
+    /// The last frame's full waveforms, by (row, column) and then range, when the scenario asks
+    /// for them (render.waveforms); empty otherwise.
+    const FrameWaveforms& waveforms_last_frame() const { return waveforms_last_frame_; }
     /// The scene as traced (for benchmarks: record its rays, trace them again raw).
     raytrace::TracedScene& traced() { return traced_; }
 
@@ -64,7 +67,9 @@ private:
     std::uint64_t aim_row(int row, GimbalPointing pointing, double frame_start_s);
     /// Pass 2: the returns of steps [first_step, end_step) of one raster line, in firing order; adds
     /// the rays traced to `rays`.
-    std::vector<Return> trace_steps(int row, int first_step, int end_step, std::uint64_t frame, std::uint64_t& rays) const;
+    /// With `windows` set, also appends the beams' sampled waveforms to it.
+    std::vector<Return> trace_steps(int row, int first_step, int end_step, std::uint64_t frame, std::uint64_t& rays,
+                                    std::vector<WaveformWindow>* windows) const;
     std::vector<GroundTruthObject> ground_truth(double time_s, const std::vector<Return>& returns) const;
     GimbalPointing cue_pointing(double time_s) const;
 
@@ -97,6 +102,7 @@ private:
     std::vector<Eigen::Vector3d> extra_direction_;
     std::vector<ProbeHit> axis_hit_, extra_hit_;
     std::uint64_t rays_last_frame_ = 0;
+    FrameWaveforms waveforms_last_frame_;
 };
 
 /// Centre of an object's model bounds in the world at `time_s`.

@@ -43,6 +43,9 @@ struct RenderSettings {
     /// Relative error allowed on each object's echo energy per beam (adaptive footprints).
     double footprint_tolerance = 0.05;
     double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
+    /// Write each frame's full waveforms (waveforms/NNNNNN.h5): every beam is then detected in its
+    /// sampled waveform, one meeting a single surface too (see BeamReceiver::receive).
+    bool waveforms = false;
 };
 
 /// Everything one run needs, read from a scenario file: the single source of truth of a dataset.

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "ladarsim/dataset/waveform_file.h"
 #include "ladarsim/sensor_model/signal/apd_receiver.h"
 #include "ladarsim/sensor_model/signal/counter_random.h"
 
@@ -48,8 +49,11 @@ public:
     /// everything else a beam does; two windows of a few hundred samples overlap with probability
     /// below 1 %).
     std::vector<DetectedPulse> detect(std::span<const Echo> echoes, RandomSequence* noise) const;
-    /// The same, appending to `out` (per-thread scratch buffers: no allocation once warm).
-    void detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& out) const;
+    /// The same, appending to `out` (per-thread scratch buffers: no allocation once warm), and
+    /// with `windows` set each window's sampled current (start_s and samples_a) appended to it:
+    /// the waveform the pulses were found in, sample for sample.
+    void detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& out,
+                std::vector<WaveformWindow>* windows = nullptr) const;
 
     /// `n` samples of zero-mean, unit-variance Gaussian noise whose spectrum is flat up to the
     /// receiver's bandwidth and zero above (spectral synthesis with one inverse FFT).
@@ -72,7 +76,7 @@ private:
     double reach_a(double power_w, bool noisy) const;
     PulseShape shape_of(const Echo& e) const;
     void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
-                       std::vector<DetectedPulse>& out) const;
+                       std::vector<DetectedPulse>& out, std::vector<WaveformWindow>* windows) const;
     /// One window's sampled waveform and what made it (defined in the .cpp).
     struct Window;
     /// The noise-free power the echoes put in each bin (`power`, of `bins`).
