@@ -55,6 +55,7 @@ struct PcapngLayout {
     std::uint32_t link_type = 1;
     bool extra_blocks = true;      ///< a name-resolution and a statistics block, which readers pass over
     bool simple_packets = false;   ///< simple packet blocks (no time stamp) in place of enhanced ones
+    bool obsolete_packets = false; ///< packet blocks (pcapng 1.0's, before enhanced ones) in their place
 };
 
 /// `records` as Wireshark saves them: a section header, an interface description, one enhanced
@@ -118,13 +119,18 @@ inline void write_pcapng(const std::filesystem::path& file, const std::vector<Pc
         }
         const std::uint64_t stamp = layout.nanoseconds ? r.seconds * 1'000'000'000ull + r.microseconds * 1000ull
                                                        : r.seconds * 1'000'000ull + r.microseconds;
-        u32(body, 0);  // interface
+        if (layout.obsolete_packets) {
+            u16(body, 0);  // interface
+            u16(body, 0);  // drops
+        } else {
+            u32(body, 0);  // interface
+        }
         u32(body, static_cast<std::uint32_t>(stamp >> 32));
         u32(body, static_cast<std::uint32_t>(stamp));
         u32(body, static_cast<std::uint32_t>(r.frame.size()));
         u32(body, wire);
         body.insert(body.end(), r.frame.begin(), r.frame.end());
-        block(6, body);
+        block(layout.obsolete_packets ? 2 : 6, body);
     }
     if (layout.extra_blocks) {
         Bytes isb;  // interface statistics: interface 0, time stamp 0, no options
