@@ -5,10 +5,9 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "ladarsim/core/log_lines.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "exit_codes.h"
 #include "mpi_team.h"
@@ -52,8 +51,7 @@ int main(int argc, char** argv) {
     // CLI11 says "A subcommand is required" for a misspelt one too: name it, and list the valid ones.
     if (const int code = apps::check_subcommand(app, argc, argv); code != 0) return code;
 
-    spdlog::set_default_logger(spdlog::stderr_color_mt("ladarsim"));
-    spdlog::set_pattern("%^%l%$: %v");
+    use_ladarsim_log_lines();
     // The parsed subcommand runs inside parse(), as its callback.
     return apps::exit_code_of(
         [&] {

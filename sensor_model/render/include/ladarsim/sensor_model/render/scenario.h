@@ -63,12 +63,13 @@ struct Scenario {
 /// Reads and validates a scenario file. Throws InputError naming the file, the field and the problem.
 Scenario load_scenario(const std::filesystem::path& file);
 
-/// The name a scenario held in memory goes by, in place of a file name.
-inline constexpr const char* kInMemoryScenarioName = "<dict>";
+/// The name a scenario held in memory goes by, in place of a file name: Python's own term for what
+/// is not a file ("<string>", "<stdin>"), and the argument's, `scenario`.
+inline constexpr const char* kInMemoryScenarioName = "<scenario dict>";
 
 /// The same for a scenario document held in memory (from Python): `extends` and relative paths
-/// are resolved against `base_dir` (empty: the working directory), as they would be for a file
-/// in that folder. The scenario's `file`, and the file errors name, is `base_dir/<dict>`.
+/// are resolved against `base_dir`, as they would be for a file in that folder. The scenario's
+/// `file`, and the file errors name, is `base_dir/<scenario dict>`.
 Scenario load_scenario(const nlohmann::json& document, const std::filesystem::path& base_dir);
 
 }  // namespace ladarsim::sensor_model
