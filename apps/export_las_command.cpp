@@ -32,9 +32,7 @@ struct ExportLasCommand {
     }
 
     int run() {
-        LasExportProgress progress;
-        progress.intensity_scanned = progress_lines("intensity scan, frame");
-        progress.frame_written = progress_lines("export, frame");
+        const ExportProgress progress{progress_lines("intensity scan, frame"), progress_lines("export, frame")};
         const LasExportSummary s = export_las(dataset_dir, out_dir, options, progress);
         std::printf("exported %d frames, %llu returns from %s into %s (LAS 1.4, %s frame, intensity x 65535 / %g)\n", s.frames,
                     static_cast<unsigned long long>(s.returns), dataset_dir.c_str(), s.out.c_str(),

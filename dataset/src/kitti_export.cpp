@@ -165,7 +165,7 @@ SourceFrames read_source(const std::filesystem::path& dataset_dir) {
 /// no ImageSets) the split each source's frames are listed in; labels as `options` say.
 KittiExportSummary export_frames(const std::vector<SourceFrames>& sources, const std::vector<std::string>& split_of_source,
                                  nlohmann::json origin, const std::filesystem::path& out_dir,
-                                 const KittiExportOptions& options, const KittiExportProgress& progress) {
+                                 const KittiExportOptions& options, const ExportProgress& progress) {
     KittiExportSummary summary;
     summary.out = checked_output_dir(out_dir, kitti_layout());
     std::vector<std::filesystem::path> pcds;
@@ -324,7 +324,7 @@ const OutputLayout& kitti_layout() {
 }
 
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                                const KittiExportOptions& options, const KittiExportProgress& progress) {
+                                const KittiExportOptions& options, const ExportProgress& progress) {
     const SourceFrames source = read_source(dataset_dir);
     const nlohmann::json origin = {{"exported_from", source.dir.string()}, {"dataset_id", source.manifest.id}};
     return export_frames({source}, {}, origin, out_dir, options, progress);
@@ -332,7 +332,7 @@ KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const 
 
 KittiExportSummary export_kitti(const std::filesystem::path& origin, const std::vector<KittiSource>& sources,
                                 const std::filesystem::path& out_dir, const KittiExportOptions& options,
-                                const KittiExportProgress& progress) {
+                                const ExportProgress& progress) {
     std::vector<SourceFrames> frames;
     std::vector<std::string> splits;
     nlohmann::json datasets = nlohmann::json::array();

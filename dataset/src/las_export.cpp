@@ -142,7 +142,7 @@ const OutputLayout& las_layout() {
 }
 
 LasExportSummary export_las(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                            const LasExportOptions& options, const LasExportProgress& progress) {
+                            const LasExportOptions& options, const ExportProgress& progress) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dataset_dir, ec))
         throw InputError(dataset_dir.string(), "DIR", std::filesystem::exists(dataset_dir, ec) ? "is not a directory" : "no such directory");

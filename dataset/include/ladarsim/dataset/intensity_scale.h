@@ -12,4 +12,10 @@ namespace ladarsim {
 float largest_intensity(const std::vector<std::filesystem::path>& pcds,
                         const std::function<void(int done, int total)>& frame_scanned);
 
+/// Progress of an export that scans the frames' intensities first, then writes each frame.
+struct ExportProgress {
+    std::function<void(int done, int total)> intensity_scanned;  ///< first pass, per frame read
+    std::function<void(int done, int total)> frame_written;      ///< second pass, per frame written
+};
+
 }  // namespace ladarsim

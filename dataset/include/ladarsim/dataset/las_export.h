@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "ladarsim/dataset/dataset_directory.h"
+#include "ladarsim/dataset/intensity_scale.h"
 #include "ladarsim/dataset/frame.h"
 
 namespace ladarsim {
@@ -40,11 +41,6 @@ struct LasExportOptions {
     bool world = false;
 };
 
-struct LasExportProgress {
-    std::function<void(int done, int total)> intensity_scanned;  ///< first pass, per frame read
-    std::function<void(int done, int total)> frame_written;      ///< second pass, per frame written
-};
-
 struct LasExportSummary {
     std::filesystem::path out;      ///< the export directory as written (see checked_output_dir)
     int frames = 0;
@@ -59,6 +55,6 @@ struct LasExportSummary {
 /// manifest or frames, a malformed file, or `world` asked of a dataset whose manifest has no mount
 /// (a recording).
 LasExportSummary export_las(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                            const LasExportOptions& options = {}, const LasExportProgress& progress = {});
+                            const LasExportOptions& options = {}, const ExportProgress& progress = {});
 
 }  // namespace ladarsim
