@@ -1,6 +1,7 @@
 #include "ladarsim/sensor_model/footprint/footprint_integrator.h"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 #include "beam_cone.h"
@@ -8,6 +9,8 @@
 #include "curved_patch.h"
 #include "footprint_context.h"
 #include "ladarsim/sensor_model/footprint/target_lattice.h"
+#include "map_discs.h"
+#include "map_scanline.h"
 #include "plane_patch.h"
 #include "recorded_map_sampling.h"
 #include "straight_edge.h"
@@ -37,7 +40,7 @@ constexpr double kBrightTargetThresholds = 3.0;
 
 struct FootprintIntegrator::Strategies {
     Strategies(const FootprintSettings& settings, const Sensor& sensor, const std::vector<scene::SceneObject>& objects,
-               const raytrace::TracedScene& traced, const EchoRadiometry& radiometry)
+               const scene::BackgroundMap* map_discs, const raytrace::TracedScene& traced, const EchoRadiometry& radiometry)
         : context(settings, sensor, traced, radiometry),
           cone(context, objects),
           reference(context, context.shape.footprint()),
@@ -50,7 +53,11 @@ struct FootprintIntegrator::Strategies {
                       nullptr),
           medium_cells(context, {kOutlineBase, kFootprintSamples, false}, nullptr, &map),
           rest_cells(context, {kFootprintBase, kFootprintSamples, false}, nullptr, &map),
-          footprint_cells(context, {kFootprintBase, kFootprintSamples, false}, &edge, &map) {}
+          footprint_cells(context, {kFootprintBase, kFootprintSamples, false}, &edge, &map) {
+        if (map_discs && !map_discs->points_world.empty()) discs.emplace(*map_discs, settings.origin_world);
+        if (discs && !context.adaptive && settings.map_lines > 0)
+            map_reference.emplace(context, *discs, settings.map_lines, std::max(1, settings.samples / settings.map_lines));
+    }
 
     /// Targets are sampled where they can be; the rest of the footprint, like a footprint without
     /// targets, is one plane patch when the probes agree, and refined otherwise (always in media).
@@ -70,12 +77,14 @@ struct FootprintIntegrator::Strategies {
     CellRefinement rest_cells;       ///< what targets leave, or a footprint whose edge failed: the map first
     CellRefinement footprint_cells;  ///< a whole footprint: an edge or the map at its first cells
     const TargetLattice* target_lattice = nullptr;
+    std::optional<MapDiscs> discs;
+    std::optional<MapScanline> map_reference;  ///< fixed sub-rays' counterpart over a recorded map (settings.map_lines)
 };
 
 FootprintIntegrator::FootprintIntegrator(const FootprintSettings& settings, const Sensor& sensor,
-                                         const std::vector<scene::SceneObject>& objects, const raytrace::TracedScene& traced,
-                                         const EchoRadiometry& radiometry)
-    : s_(std::make_unique<Strategies>(settings, sensor, objects, traced, radiometry)) {}
+                                         const std::vector<scene::SceneObject>& objects, const scene::BackgroundMap* map,
+                                         const raytrace::TracedScene& traced, const EchoRadiometry& radiometry)
+    : s_(std::make_unique<Strategies>(settings, sensor, objects, map, traced, radiometry)) {}
 
 FootprintIntegrator::~FootprintIntegrator() = default;
 
@@ -93,7 +102,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     const FootprintContext& context = s_->context;
     const FootprintPart whole{context.shape.footprint().square(), std::nullopt, 1.0, 0};
     if (!context.adaptive) {
-        s_->reference.integrate({aim, probes, {}, context.traced.has_volumes(), frame, 0}, whole, out);
+        const BeamSetting beam{aim, probes, {}, context.traced.has_volumes(), frame, 0};
+        if (!s_->map_reference || s_->map_reference->integrate(beam, whole, out).outcome == Outcome::declined)
+            s_->reference.integrate(beam, whole, out);
         return;
     }
     thread_local TargetsInCone targets;
