@@ -35,6 +35,8 @@ constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's ce
 /// bright or dim, the beam takes that instead: this grid is for a footprint whose edge crosses the
 /// target, or a raster whose footprints do not overlap along a line.)
 constexpr double kBrightTargetThresholds = 3.0;
+/// Lines across a footprint over a recorded map.
+constexpr int kMapLines = 32;
 
 }  // namespace
 
@@ -57,6 +59,10 @@ struct FootprintIntegrator::Strategies {
         if (map_discs && !map_discs->points_world.empty()) discs.emplace(*map_discs, settings.origin_world);
         if (discs && !context.adaptive && settings.map_lines > 0)
             map_reference.emplace(context, *discs, settings.map_lines, std::max(1, settings.samples / settings.map_lines));
+        if (discs && context.adaptive) {
+            map_lines.emplace(context, *discs, kMapLines, 0);
+            map.integrate_along_lines(&*map_lines);
+        }
     }
 
     /// Targets are sampled where they can be; the rest of the footprint, like a footprint without
@@ -79,6 +85,7 @@ struct FootprintIntegrator::Strategies {
     const TargetLattice* target_lattice = nullptr;
     std::optional<MapDiscs> discs;
     std::optional<MapScanline> map_reference;  ///< fixed sub-rays' counterpart over a recorded map (settings.map_lines)
+    std::optional<MapScanline> map_lines;      ///< the recorded map's footprints where the map strategy takes them
 };
 
 FootprintIntegrator::FootprintIntegrator(const FootprintSettings& settings, const Sensor& sensor,
@@ -128,6 +135,10 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         s_->medium_cells.integrate(beam, whole, out);
         return;
     }
+    if (s_->map_lines && s_->map.met_by(witnesses)) {
+        s_->map_lines->integrate(beam, whole, out);
+        return;
+    }
     const Outcome patch = s_->plane.integrate(beam, whole, out).outcome;
     if (patch == Outcome::empty) {
         // Nothing inside; a sentinel that met something: its edge may cross the rim.
@@ -173,6 +184,10 @@ void FootprintIntegrator::Strategies::integrate_targets(const BeamSetting& beam,
     }
     const double rest = 1.0 - sampled;
     const FootprintPart rest_part{context.shape.footprint().square(), *targets.outline, rest, kComplementSamples};
+    if (rest > 1e-9 && !beam.media && map_lines && map.met_by(witnesses)) {
+        map_lines->integrate(beam, rest_part, out);
+        return;
+    }
     const Outcome patch = rest > 1e-9 && !beam.media ? plane.integrate(beam, rest_part, out).outcome : Outcome::declined;
     if (rest > 1e-9 && (patch == Outcome::declined || patch == Outcome::parted)) rest_cells.integrate(with_seeds(), rest_part, out);
 }

@@ -143,13 +143,17 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
         const int n = std::clamp(static_cast<int>(std::ceil(span / cut_m)), 1, kMaxCuts);
         const Eigen::Vector3d normal = discs_.normal(piece.disc);
         double total = 0.0;
+        double cdf_a = footprint.axis_cdf(y_of(ta)), range_a = range_at(ta);
         for (int j = 0; j < n; ++j) {
-            const double a = ta + (tb - ta) * j / n, b = ta + (tb - ta) * (j + 1) / n, t = 0.5 * (a + b);
-            const double weight = scale * mass(line, a, b);
+            const double b = ta + (tb - ta) * (j + 1) / n, t = ta + (tb - ta) * (j + 0.5) / n;
+            const double cdf_b = footprint.axis_cdf(y_of(b)), range_b = range_at(b);
+            const double weight = scale * line.weight * (cdf_b - cdf_a);
+            const double spread = std::abs(range_b - range_a) / std::sqrt(12.0);
+            cdf_a = cdf_b;
+            range_a = range_b;
             if (!(weight > 0.0)) continue;
             const Eigen::Vector3d d = direction_world(line, t);
             const double range = range_at(t);
-            const double spread = std::abs(range_at(b) - range_at(a)) / std::sqrt(12.0);
             out.surface.push_back({range, weight,
                                    context_.echo_energy_j(weight, discs_.reflectance(piece.disc), std::abs(normal.dot(d)), range, 1.0),
                                    spread, scene::kBackgroundObjectId, origin + range * d, normal.cast<float>(), 0});
