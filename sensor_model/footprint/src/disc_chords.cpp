@@ -6,31 +6,32 @@
 namespace ladarsim::sensor_model {
 
 bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, double X, double t_max, DiscChord& out) {
-    // The plane of the line's directions has normal m; it cuts the disc's plane along l, and the
-    // disc where the cut passes within r of its centre.
-    const Eigen::Vector3d m(X, -1.0, 0.0);
-    Eigen::Vector3d l = m.cross(n);
-    const double l_norm = l.norm();
-    if (l_norm < 1e-12) return false;
-    l /= l_norm;
-    const Eigen::Vector3d u = n.cross(l);
-    const double mu_den = m.dot(u);
-    if (std::abs(mu_den) < 1e-15) return false;
-    const double mu = -m.dot(p) / mu_den;
-    if (!(std::abs(mu) < r)) return false;
+    // The plane of the line's directions has normal m = (X, -1, 0); it cuts the disc's plane along
+    // l = m x n, and the disc where the cut passes within r of its centre: at mu = -(m . p) / |l|
+    // along u = n x l / |l| (m . (n x l) = |l|^2). Written out by component: every beam asks
+    // this of each disc on each line, and only x and z of the chord's ends are needed.
+    const double nx = n.x(), ny = n.y(), nz = n.z();
+    const double lz = nx + X * ny;
+    const double l2 = nz * nz * (1.0 + X * X) + lz * lz;
+    const double mp = X * p.x() - p.y();
+    if (!(mp * mp < r * r * l2)) return false;  // misses the disc (or l = 0: the planes are parallel)
+    const double l_norm = std::sqrt(l2);
+    const double mu = -mp / l_norm;
     const double h = std::sqrt(r * r - mu * mu);
-    const Eigen::Vector3d q0 = p + mu * u;
-    const Eigen::Vector3d qa = q0 + h * l, qb = q0 - h * l;
-    if (!(qa.x() > 0.0 && qb.x() > 0.0)) return false;
-    const double ta = qa.z() / qa.x(), tb = qb.z() / qb.x();
+    const double ux = (ny * lz + X * nz * nz) / l_norm, uz = nz * (ny - X * nx) / l_norm;
+    const double q0x = p.x() + mu * ux, q0z = p.z() + mu * uz;
+    const double hlx = -h * nz / l_norm, hlz = h * lz / l_norm;
+    const double ax = q0x + hlx, bx = q0x - hlx;
+    if (!(ax > 0.0 && bx > 0.0)) return false;
+    const double ta = (q0z + hlz) / ax, tb = (q0z - hlz) / bx;
     out.t_lo = std::max(std::min(ta, tb), -t_max);
     out.t_hi = std::min(std::max(ta, tb), t_max);
     if (!(out.t_lo < out.t_hi)) return false;
     // Along (1, X, t) the plane n . (q - p) = 0 is at distance s = (n . p) / (n . (1, X, t)).
     const double c = n.dot(p);
     if (std::abs(c) < 1e-12) return false;
-    out.g0 = (n.x() + X * n.y()) / c;
-    out.g1 = n.z() / c;
+    out.g0 = lz / c;
+    out.g1 = nz / c;
     return true;
 }
 
