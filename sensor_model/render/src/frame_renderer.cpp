@@ -44,6 +44,7 @@ FootprintSettings footprint_settings(const Scenario& scenario) {
     FootprintSettings settings;
     settings.origin_world = scenario.mount.position_world;
     settings.samples = scenario.render.footprint_samples;
+    settings.map_lines = scenario.render.footprint_map_lines;
     settings.tolerance = scenario.render.footprint_tolerance;
     settings.truncation = scenario.render.footprint_truncation;
     settings.jitter = scenario.render.jitter;
@@ -64,7 +65,8 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
       raster_(*scenario.sensor.scan),
       receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise),
       radiometry_(scenario.sensor, receiver_),
-      integrator_(footprint_settings(scenario), scenario.sensor, scenario.scene.objects, traced_, radiometry_),
+      integrator_(footprint_settings(scenario), scenario.sensor, scenario.scene.objects,
+                  scenario.scene.background ? &*scenario.scene.background : nullptr, traced_, radiometry_),
       world_from_sensor_rotation_(scenario.mount.world_from_sensor().linear()) {
     using Eigen::AngleAxisd;
     for (int row = 0; row < raster_.rows(); ++row) {

@@ -33,9 +33,9 @@ class TargetLattice;
 ///    refined in cells of equal energy, and a footprint over a recorded map takes brute force.
 class FootprintIntegrator {
 public:
-    /// `objects`: the scene's, whose meshes give targets' seeds.
+    /// `objects`: the scene's, whose meshes give targets' seeds; `map`: its recorded map (null: none).
     FootprintIntegrator(const FootprintSettings& settings, const Sensor& sensor, const std::vector<scene::SceneObject>& objects,
-                        const raytrace::TracedScene& traced, const EchoRadiometry& radiometry);
+                        const scene::BackgroundMap* map, const raytrace::TracedScene& traced, const EchoRadiometry& radiometry);
     ~FootprintIntegrator();
     FootprintIntegrator(const FootprintIntegrator&) = delete;
     FootprintIntegrator& operator=(const FootprintIntegrator&) = delete;

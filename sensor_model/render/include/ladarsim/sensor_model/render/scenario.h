@@ -40,6 +40,10 @@ struct RenderSettings {
     /// 0: adaptive footprints to `footprint_tolerance`; N > 0: N stratified sub-rays per beam
     /// (brute force, the reference the adaptive integration is checked against).
     int footprint_samples = 0;
+    /// With footprint_samples > 0, a footprint over a recorded map is integrated along this many
+    /// lines instead (the map's converged reference, its rays for other objects spread over the
+    /// lines); 0: the sub-rays there too.
+    int footprint_map_lines = 0;
     /// Relative error allowed on each object's echo energy per beam (adaptive footprints).
     double footprint_tolerance = 0.05;
     double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
