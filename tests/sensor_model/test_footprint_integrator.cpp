@@ -502,8 +502,9 @@ MapErrors map_errors(Scenario scenario, const Frame& want) {
     return e;
 }
 
-/// Sub-rays a footprint over a recorded map takes at the default tolerance (the lattice's).
-int lattice_budget() { return static_cast<int>(SubRayLattice::kBudgetOverStratified * 256); }
+/// Brute force's sub-rays a footprint in these comparisons: what the shared sub-rays over a
+/// recorded map took at the default tolerance before the scanline (1.5 x 256).
+constexpr int lattice_budget() { return 384; }
 
 }  // namespace
 

@@ -99,7 +99,6 @@ bool FootprintIntegrator::adaptive() const { return s_->context.adaptive; }
 const BeamShape& FootprintIntegrator::shape() const { return s_->context.shape; }
 int FootprintIntegrator::grid_base() const { return s_->context.grid_base; }
 std::size_t FootprintIntegrator::map_samples() const { return s_->context.outline_samples; }
-void FootprintIntegrator::share_sub_rays(const SubRayLattice* lattice) { s_->map.share_sub_rays(lattice); }
 void FootprintIntegrator::share_target_sub_rays(const TargetLattice* lattice) { s_->target_lattice = lattice; }
 
 void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const {

@@ -21,11 +21,6 @@ bool RecordedMapSampling::met_by(std::span<const Probe* const> witnesses) const 
 
 Integration RecordedMapSampling::integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const {
     if (lines_ && !beam.media) return lines_->integrate(beam, part, out);
-    // Where footprints overlap, their neighbours' sub-rays are this one's too.
-    if (lattice_ && !beam.media) {
-        lattice_->gather(beam.aim.world_from_beam, beam.aim.cell, part.excluded, part.share, out);
-        return {Outcome::integrated, part.share};
-    }
     return own_.integrate(beam, part, out);
 }
 

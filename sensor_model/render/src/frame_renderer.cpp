@@ -77,16 +77,6 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         }
     }
     if (integrator_.adaptive()) find_neighbours();
-    const bool map = scenario.scene.background && !scenario.scene.background->points_world.empty();
-    if (integrator_.adaptive() && map &&
-        SubRayLattice::overlap(integrator_.shape().footprint(), integrator_.shape().ellipticity(), raster_) >= SubRayLattice::kMinOverlap) {
-        lattice_ = std::make_unique<SubRayLattice>(
-            traced_, raster_, integrator_.shape().footprint(), integrator_.shape().ellipticity(), static_cast<std::size_t>(SubRayLattice::kBudgetOverStratified * static_cast<double>(integrator_.map_samples())), scenario.mount.position_world,
-            world_from_sensor_rotation_, scenario.sensor.receiver.max_range_m, scenario.render.seed, scenario.render.jitter,
-            [this](const raytrace::Hit& h) { return radiometry_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0); });
-        if (lattice_->usable()) integrator_.share_sub_rays(lattice_.get());
-        else lattice_.reset();
-    }
     if (integrator_.adaptive() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
         target_lattice_ = std::make_unique<TargetLattice>(traced_, raster_, integrator_.shape(), radiometry_, integrator_.grid_base(),
                                                           scenario.mount.position_world,
@@ -375,7 +365,6 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
-    if (lattice_) lattice_->start_frame(pointing, index);
     if (target_lattice_) target_lattice_->start_frame(pointing, index, frame.start_time_s);
     // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
     // stretches keep both cores busy.

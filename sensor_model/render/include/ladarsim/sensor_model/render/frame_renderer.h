@@ -13,7 +13,6 @@
 #include "ladarsim/sensor_model/sensor/scan_pattern.h"
 #include "ladarsim/sensor_model/sensor/gimbal.h"
 #include "ladarsim/sensor_model/render/scenario.h"
-#include "ladarsim/sensor_model/footprint/sub_ray_lattice.h"
 #include "ladarsim/sensor_model/footprint/target_lattice.h"
 
 namespace ladarsim::sensor_model {
@@ -79,8 +78,6 @@ private:
     BeamReceiver receiver_;
     EchoRadiometry radiometry_;
     FootprintIntegrator integrator_;
-    /// Sub-rays shared by overlapping footprints over a recorded map (null where they do not pay).
-    std::unique_ptr<SubRayLattice> lattice_;
     /// Sub-rays over a lone target shared by the footprints of a line (null where they would not
     /// overlap).
     std::unique_ptr<TargetLattice> target_lattice_;
