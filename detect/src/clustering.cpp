@@ -177,6 +177,19 @@ std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double
     return cores;
 }
 
+std::vector<Cluster> standing_clear(std::vector<Cluster> clusters, const Points& all, double margin_m, double max_ratio) {
+    std::erase_if(clusters, [&](const Cluster& c) {
+        const Eigen::Vector3f half = (0.5 * c.box.size).cast<float>() + Eigen::Vector3f::Constant(static_cast<float>(margin_m));
+        const Eigen::Vector3f centre = c.box.centre.cast<float>();
+        const auto inside = std::count_if(all.begin(), all.end(), [&](const Eigen::Vector3f& p) {
+            return ((p - centre).cwiseAbs().array() <= half.array()).all();
+        });
+        const auto others = static_cast<double>(inside) - static_cast<double>(c.points.size());
+        return others > max_ratio * static_cast<double>(c.points.size());
+    });
+    return clusters;
+}
+
 std::vector<Cluster> range_coherent(std::vector<Cluster> clusters, double tolerance_m, double min_fraction) {
     std::erase_if(clusters, [&](const Cluster& c) {
         if (c.points.empty()) return true;

@@ -176,3 +176,22 @@ TEST_CASE("clutter: the cued tracker follows a drone through a cloud's backscatt
         CHECK(std::abs(d.box.centre.z() - bounding_box(target).centre.z()) < 0.03);
     }
 }
+
+TEST_CASE("clutter: a clump inside a cloud's backscatter does not stand clear, a drone in clear air does", "[detect][clutter]") {
+    const double radius = vrbnn_radius_m(180.0, kPaperSensor, 640.0, 0.01);
+    // A clump of 6 returns agreeing in range (2 lines of 3 beams), and a drone 80 beams away.
+    const Points clump = drone(640.0, -40 * kPitchAz, 0.0, 3), target = drone(640.0, 40 * kPitchAz, 0.0, 16);
+    std::vector<Cluster> clusters{Cluster{clump, bounding_box(clump)}, Cluster{target, bounding_box(target)}};
+    // The cloud about the clump: returns at any depth within the radius of its box, on its beams
+    // and the lines above and below (outlier removal dropped them before clustering).
+    Points frame = joined(clump, target);
+    for (int row = -1; row <= 2; ++row)
+        for (int column = -41; column < -36; ++column) frame.push_back(along(640.0 + 0.1 * (column + 39) + 0.05 * row, column * kPitchAz, row * kPitchEl));
+    const std::vector<Cluster> clear = standing_clear(clusters, frame, radius, 1.0);
+    REQUIRE(clear.size() == 1);
+    CHECK(clear[0].points == target);
+    // With a return of the cloud fewer than its own, the clump stands clear.
+    Points sparse = joined(clump, target);
+    for (int column = -41; column < -36; ++column) sparse.push_back(along(640.2, column * kPitchAz, -kPitchEl));
+    CHECK(standing_clear(clusters, sparse, radius, 1.0).size() == 2);
+}

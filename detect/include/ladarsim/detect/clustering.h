@@ -69,6 +69,13 @@ std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max
 /// sensor origin).
 std::vector<Cluster> range_coherent(std::vector<Cluster> clusters, double tolerance_m, double min_fraction);
 
+/// Clutter inside a volume: keeps the clusters that stand clear of the other returns of the frame,
+/// with at most `max_ratio` times their own returns among `all` (every return the clustering saw,
+/// outliers included) inside their box grown by `margin_m`. A target in clear air has nothing
+/// about it; a clump that clustering found inside a cloud's or fog's backscatter is surrounded by
+/// more of it, at every depth.
+std::vector<Cluster> standing_clear(std::vector<Cluster> clusters, const Points& all, double margin_m, double max_ratio);
+
 /// Each cluster cut down to its coherent core: the most returns whose ranges lie within a window
 /// of 2 x `tolerance_m` (a volume's returns that clustering chained to a target fall away), kept
 /// where it holds `min_points` or more. A tracker that knows where its target should be takes the
