@@ -60,7 +60,10 @@ std::vector<TrackedObject> MultiTargetTracker::process(double time_s, const Poin
         plausible_targets(rbnn(remove_outliers(foreground, radius, config_.min_neighbours), radius), config_.max_object_diagonal_m,
                           spread_rad, static_cast<std::size_t>(config_.min_neighbours) + 1);
     // Clutter: clumps of a cloud's or fog's backscatter, which do not agree in range.
-    if (config_.range_coherence_m > 0.0) candidates = range_coherent(std::move(candidates), config_.range_coherence_m, config_.coherent_fraction);
+    if (config_.range_coherence_m > 0.0) {
+        candidates = range_coherent(std::move(candidates), config_.range_coherence_m, config_.coherent_fraction);
+        candidates = standing_clear(std::move(candidates), foreground, radius, 1.0);
+    }
 
     // Tracks against candidates by least total distance, each within the distance its target
     // could have flown since it was last seen (the single-target tracker's gate).

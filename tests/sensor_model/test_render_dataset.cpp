@@ -8,6 +8,7 @@
 #include "ladarsim/sensor_model/render/render_dataset.h"
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/poses_file.h"
+#include "ladarsim/scene/procedural_models.h"
 #include "../support/closed_form_scenario.h"
 #include "../support/scene_builders.h"
 #include "../support/scratch_dir.h"
@@ -94,4 +95,29 @@ TEST_CASE("poses.txt holds the sensor's world-from-sensor pose, which takes a fr
         CHECK(std::abs(world.x() - 5.0) < 20.0);
         CHECK(std::abs(world.z() - 2.0) < 20.0);
     }
+}
+
+TEST_CASE("the initial map is surveyed on a clear day: a cloud volume in view is not in it", "[render_dataset]") {
+    const test::ScratchDir dir;
+    Scenario s = test::closed_form_scenario();
+    s.file = dir / "scenario.json";
+    // A wall 300 m ahead seen through a 40 m cloud (20 /km) centred 150 m ahead, filling the field.
+    scene::SceneObject wall = test::object_at(1, test::plate(40.0, 0.3), test::fixed_at(300.0, 0.0, 0.0));
+    wall.object_class = scene::ObjectClass::building;
+    scene::SceneObject cloud =
+        test::object_at(40, std::make_shared<scene::Model>(scene::make_cloud(40.0, 0.02)), test::fixed_at(150.0, 0.0, 0.0));
+    cloud.object_class = scene::ObjectClass::cloud;
+    s.scene.objects = {wall, cloud};
+    DatasetOptions options;
+    options.out_dir = dir / "d";
+    options.frames = 1;
+    render_dataset(s, options);
+    const std::vector<Return> map = read_frame_pcd(dir / "d" / "background.pcd");
+    const auto in_cloud = std::count_if(map.begin(), map.end(), [](const Return& r) { return r.range_m < 200.0; });
+    const auto on_wall = std::count_if(map.begin(), map.end(), [](const Return& r) { return r.range_m > 299.0; });
+    CHECK(in_cloud == 0);
+    CHECK(on_wall > 100);
+    // The frame itself sees the cloud's backscatter.
+    const std::vector<Return> frame = read_frame_pcd(dir / "d" / "frames" / "000000.pcd");
+    CHECK(std::count_if(frame.begin(), frame.end(), [](const Return& r) { return r.object_id == 40; }) > 100);
 }

@@ -15,7 +15,8 @@ namespace ladarsim::sensor_model {
 namespace {
 
 /// The initial map Algorithm 1 subtracts: a survey of the static world alone (the background map
-/// and the objects that do not move, never a drone, bird or aircraft; noise off) over every
+/// and the objects that do not move, never a drone, bird or aircraft, nor a cloud or fog volume;
+/// noise off) over every
 /// direction the frames looked. When the gimbal moved, with beams at half the sensor's pitch over
 /// the field it swept, so that a static surface's returns in any frame fall among the survey's
 /// points; when every frame looked the same way (a fixed gimbal, a single frame), with the
@@ -27,12 +28,16 @@ namespace {
 std::size_t write_background_map(const Scenario& scenario, const PointingExtent& looked, const std::filesystem::path& file) {
     Scenario survey = scenario;
     // What does not move, but never a target: a drone, bird or aircraft hovering still is not part
-    // of the map a detector subtracts (it would subtract the target itself).
+    // of the map a detector subtracts (it would subtract the target itself). Nor a cloud or fog
+    // volume: an initial map is surveyed on a clear day, and a medium's backscatter comes from
+    // wherever its beams cross it, not from a surface; mapped, it would subtract whatever flies
+    // inside it.
     std::erase_if(survey.scene.objects, [](const scene::SceneObject& o) {
         using scene::ObjectClass;
         const bool target = o.object_class == ObjectClass::drone || o.object_class == ObjectClass::bird ||
                             o.object_class == ObjectClass::plane;
-        return target || !o.trajectory.is_static();
+        const bool medium = o.model && o.model->is_volume();
+        return target || medium || !o.trajectory.is_static();
     });
     if ((survey.scene.objects.empty() && !survey.scene.background) || looked.frames == 0) {
         write_frame_pcd(file, Frame{});
