@@ -11,6 +11,7 @@
 #include "ladarsim/campaign/campaign_index.h"
 #include "ladarsim/campaign/sequence_sampler.h"
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/sensor_model/render/render_dataset.h"
@@ -148,7 +149,9 @@ CampaignSummary run_campaign(const CampaignSpec& spec, const CampaignOptions& op
         sensor_model::DatasetOptions render;
         render.out_dir = out / sequence_directory(i);
         render.threads = options.threads;
-        render.resume = true;
+        // A sequence an interrupted run left goes on where it stopped; a new one starts (asking
+        // it to resume warned, for every new sequence, that there was nothing to resume).
+        render.resume = fs::exists(staging_dir(render.out_dir));
         render.stop = options.stop;
         progress.sequence = i;
         render.progress = [&](int done, int) {
