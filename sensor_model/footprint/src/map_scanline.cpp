@@ -35,17 +35,9 @@ MapScanline::MapScanline(const FootprintContext& context, const MapDiscs& discs,
     tan_half_ = 1.01 * std::tan(rho * std::max(1.0, ell)) * std::sqrt(2.0);
 }
 
-Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const {
-    if (beam.media) return {Outcome::declined};
-    const Footprint& footprint = context_.shape.footprint();
-    const double ell = context_.shape.ellipticity();
-    const Eigen::Matrix3d& R = beam.aim.world_from_beam;
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
-
-    // Each candidate disc on the lines its sphere spans in azimuth.
+void MapScanline::chords_on_lines(const Eigen::Matrix3d& R, std::vector<std::vector<DiscChord>>& on_line) const {
     thread_local std::vector<std::uint32_t> candidates;
     discs_.in_cone(R.col(0), tan_half_, context_.max_range_m, candidates);
-    thread_local std::vector<std::vector<DiscChord>> on_line;
     on_line.resize(lines_.size());
     for (auto& c : on_line) c.clear();
     for (const std::uint32_t i : candidates) {
@@ -64,17 +56,14 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
             }
         }
     }
+}
 
-    // Per line, the visible pieces over the part (outside the excluded rectangle).
-    thread_local std::vector<VisiblePiece> pieces;
-    thread_local std::vector<std::uint32_t> line_start;
+double MapScanline::visible_pieces(std::vector<std::vector<DiscChord>>& on_line, const FootprintPart& part,
+                                   std::vector<VisiblePiece>& pieces, std::vector<std::uint32_t>& line_start) const {
+    const double ell = context_.shape.ellipticity();
     pieces.clear();
     line_start.clear();
     double part_weight = 0.0;
-    auto y_of = [&](double t) { return std::atan(t) / ell; };
-    auto mass = [&](const Line& line, double ta, double tb) {
-        return line.weight * (footprint.axis_cdf(y_of(tb)) - footprint.axis_cdf(y_of(ta)));
-    };
     for (std::size_t k = 0; k < lines_.size(); ++k) {
         const Line& line = lines_[k];
         line_start.push_back(static_cast<std::uint32_t>(pieces.size()));
@@ -96,6 +85,28 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
         }
     }
     line_start.push_back(static_cast<std::uint32_t>(pieces.size()));
+    return part_weight;
+}
+
+double MapScanline::y_of(double t) const { return std::atan(t) / context_.shape.ellipticity(); }
+
+double MapScanline::mass(const Line& line, double ta, double tb) const {
+    const Footprint& footprint = context_.shape.footprint();
+    return line.weight * (footprint.axis_cdf(y_of(tb)) - footprint.axis_cdf(y_of(ta)));
+}
+
+Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const {
+    if (beam.media) return {Outcome::declined};
+    const Footprint& footprint = context_.shape.footprint();
+    const double ell = context_.shape.ellipticity();
+    const Eigen::Matrix3d& R = beam.aim.world_from_beam;
+    const Eigen::Vector3d& origin = context_.settings.origin_world;
+
+    thread_local std::vector<std::vector<DiscChord>> on_line;
+    chords_on_lines(R, on_line);
+    thread_local std::vector<VisiblePiece> pieces;
+    thread_local std::vector<std::uint32_t> line_start;
+    const double part_weight = visible_pieces(on_line, part, pieces, line_start);
     if (!(part_weight > 0.0)) return {Outcome::empty};
     const double scale = part.share / part_weight;
 

@@ -34,6 +34,18 @@ private:
         double x_rad, X, y_max_rad, t_max, weight;
     };
 
+    /// Every candidate disc's chord on each line its sphere spans in azimuth (beam frame `R`).
+    void chords_on_lines(const Eigen::Matrix3d& R, std::vector<std::vector<DiscChord>>& on_line) const;
+    /// Per line, the visible pieces over `part` (outside its excluded rectangle; lower_envelope
+    /// orders each line's chords), line k's from line_start[k] to line_start[k + 1]. Returns the
+    /// beam's weight over the part.
+    double visible_pieces(std::vector<std::vector<DiscChord>>& on_line, const FootprintPart& part,
+                          std::vector<VisiblePiece>& pieces, std::vector<std::uint32_t>& line_start) const;
+    /// The footprint's y offset of a line's tangent coordinate t.
+    double y_of(double t) const;
+    /// The beam's weight on `line` between tangent coordinates ta and tb.
+    double mass(const Line& line, double ta, double tb) const;
+
     const FootprintContext& context_;
     const MapDiscs& discs_;
     int rays_per_line_;
