@@ -31,7 +31,7 @@ FrameWaveforms waveform_header(std::uint64_t frame, const Scenario& scenario, co
     w.receiver.sample_interval_s = receiver.waveform().bin_s();
     w.receiver.pulse_fwhm_s = scenario.sensor.transmitter.pulse_width_ns * 1e-9;
     w.receiver.threshold_a = apd.threshold_a();
-    w.receiver.release_a = 0.5 * apd.threshold_a();
+    w.receiver.release_a = receiver.waveform().release_a();
     w.receiver.noise_floor_a = apd.noise_floor_a();
     w.receiver.saturation_a = apd.saturation_a();
     // Frames report intensity as primary photo-electrons per joule on the detector (responsivity / q).

@@ -178,7 +178,7 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
                 Frame frame = renderer.render(static_cast<std::uint64_t>(k));
                 const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
                 std::optional<FrameWaveforms> waveforms;
-                if (scenario.render.waveforms) waveforms = renderer.waveforms_last_frame();
+                if (scenario.render.waveforms) waveforms = renderer.take_waveforms();
                 failure = writer.write(std::move(frame), seconds, std::move(waveforms));
             } catch (const std::exception& e) {
                 failure = "frame " + std::to_string(k) + ": " + e.what();

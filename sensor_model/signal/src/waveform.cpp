@@ -173,7 +173,7 @@ std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<c
     // a noise-free one would be below the release level there, and a noisy one crosses the
     // threshold at the rate of noise alone, which the false-alarm process already draws.
     auto reach = [&](double power_w) { return reach_a(power_w, noisy); };
-    const double release = 0.5 * apd_.threshold_a(), threshold = apd_.threshold_a();
+    const double release = release_a(), threshold = apd_.threshold_a();
     std::vector<LiveSpan> spans;
     for (std::size_t c = 0; c < coarse;) {
         if (reach(bound[c]) <= release) {
@@ -251,10 +251,9 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     // The 50 % crossing of a pulse is searched back no further than where the previous one ended.
     std::size_t searched_to = 0;
     // Excursions: one starts when the signal crosses the threshold and ends when it falls below
-    // half of it (hysteresis, so that noise on a slow edge, such as a cloud's, does not re-trigger
-    // at every wiggle). Inside one, a dip below half its peak followed by a rise to more than twice
+    // the release level (release_a). Inside one, a dip below half its peak followed by a rise to more than twice
     // the dip (and 3 noise sigmas above it) starts a new pulse.
-    const double release = 0.5 * threshold;
+    const double release = release_a();
     bool inside = false, in_valley = false;
     std::size_t peak = 0, valley = 0;
     for (std::size_t k = 0; k < bins; ++k) {

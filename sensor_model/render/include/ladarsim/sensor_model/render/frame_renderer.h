@@ -2,6 +2,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "ladarsim/dataset/frame.h"
@@ -44,8 +45,8 @@ public:
     /// Rays traced for the last frame rendered (probes and sub-rays): the cost of its accuracy.
     std::uint64_t rays_last_frame() const { return rays_last_frame_; }
     /// The last frame's full waveforms, by (row, column) and then range, when the scenario asks
-    /// for them (render.waveforms); empty otherwise.
-    const FrameWaveforms& waveforms_last_frame() const { return waveforms_last_frame_; }
+    /// for them (render.waveforms); empty otherwise. Taken: moved out (megabytes a frame), not copied.
+    FrameWaveforms take_waveforms() { return std::move(waveforms_last_frame_); }
     /// The scene as traced (for benchmarks: record its rays, trace them again raw).
     raytrace::TracedScene& traced() { return traced_; }
 

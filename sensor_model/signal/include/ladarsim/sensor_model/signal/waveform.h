@@ -60,6 +60,9 @@ public:
     std::vector<double> band_limited_noise(std::size_t n, RandomSequence& rng) const;
 
     double bin_s() const { return bin_s_; }
+    /// Where a pulse's excursion ends: half the threshold (hysteresis, so that noise on a slow
+    /// edge, such as a cloud's, does not re-trigger at every wiggle).
+    double release_a() const { return 0.5 * apd_.threshold_a(); }
     const PulseShape& pulse() const { return pulse_; }
 
 private:
