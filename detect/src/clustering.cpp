@@ -75,6 +75,16 @@ double default_lambda(const SensorGeometry& sensor) {
     return slope / vrbnn_radius_m(1.0, sensor, 1.0, 0.0);
 }
 
+double acquisition_range_m(const Points& points) {
+    if (points.empty()) return 0.0;
+    std::vector<float> ranges;
+    ranges.reserve(points.size());
+    for (const auto& p : points) ranges.push_back(p.norm());
+    const auto k = static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(ranges.size() - 1));
+    std::nth_element(ranges.begin(), ranges.begin() + k, ranges.end());
+    return ranges[static_cast<std::size_t>(k)];
+}
+
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours) {
     if (points.empty()) return points;
     const auto cloud = to_pcl(points);

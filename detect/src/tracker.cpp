@@ -126,19 +126,10 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         kalman_->predict(time_s, config_.kalman_accel_mps2);
         expected = kalman_->x.head<3>();
     }
-    // calRange: the predicted target's range; with no history yet, the 90th percentile of the
-    // foreground's ranges (as the tracker of every target takes it): a radius below the target's
-    // line pitch splits it into lines, and a cloud's clumps nearer the cue then compete with them.
-    double cal_range = 0.0;
-    if (expected) {
-        cal_range = expected->norm();
-    } else if (!foreground.empty()) {
-        std::vector<float> ranges;
-        for (const auto& p : foreground) ranges.push_back(p.norm());
-        const auto k = static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(ranges.size() - 1));
-        std::nth_element(ranges.begin(), ranges.begin() + k, ranges.end());
-        cal_range = ranges[static_cast<std::size_t>(k)];
-    }
+    // calRange: the predicted target's range; with no history yet, the acquisition range (as the
+    // tracker of every target takes it; the median, a cloud's range, set a radius below the
+    // target's line pitch, which split it into lines that a cloud's nearer clumps outcompeted).
+    const double cal_range = expected ? expected->norm() : acquisition_range_m(foreground);
     d.radius_m = config_.method == Method::rbnn
                      ? config_.rbnn_radius_m
                      : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, cal_range, config_.bias_m);

@@ -25,6 +25,11 @@ std::vector<Cluster> rbnn(const Points& points, double radius_m);
 /// radius to its elevation field.
 double vrbnn_radius_m(double lambda, const SensorGeometry& sensor, double range_m, double bias_m);
 
+/// The range V-RBNN's radius is set at when no target is known: the 90th percentile of the
+/// points' ranges (those of the farthest targets). A radius below a far target's beam pitch splits
+/// it; one above a near target's only joins what lies within it. 0 without points.
+double acquisition_range_m(const Points& points);
+
 /// The lambda whose V-RBNN radius grows by 1.2 of the sensor's coarser beam pitch per metre of
 /// range: returns lie on beam axes, so a target's neighbouring returns are a pitch apart and a
 /// smaller radius fragments it (Algorithm 1's lambda = 7 gives 2 cm at 600 m against a 26 cm
