@@ -90,7 +90,7 @@ std::vector<std::string> foreign_entries(const std::filesystem::path& out, const
 
 bool is_dataset_entry(const std::string& name) {
     return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd" ||
-           name == "poses.txt" || name == "waveforms";
+           name == "poses.txt" || name == "sensor_trajectory.txt" || name == "waveforms";
 }
 
 std::optional<std::vector<std::string>> owned_entries(const std::filesystem::path& dir) {

@@ -25,12 +25,13 @@ nlohmann::json box_json(const OrientedBox& box) {
 
 std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
-OrientedBox read_box(JsonFields& parent, const std::string& key) {
-    JsonFields f(parent.object(key), parent.file(), parent.path_of(key));
-    OrientedBox box;
-    box.centre = f.vec3("centre_m");
-    box.size = f.vec3("size_m");
-    if ((box.size.array() < 0.0).any()) f.fail("size_m", "sizes must not be negative");
+nlohmann::json pose_json(const Eigen::Isometry3d& pose) {
+    const Eigen::Vector3d t = pose.translation();
+    const Eigen::Quaterniond q(pose.linear());
+    return {{"position_m", {t.x(), t.y(), t.z()}}, {"orientation_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+Eigen::Quaterniond read_quaternion(JsonFields& f) {
     const auto& q = f.array("orientation_wxyz");
     if (q.size() != 4) f.fail("orientation_wxyz", "expected an array of 4 numbers");
     double wxyz[4];
@@ -38,10 +39,27 @@ OrientedBox read_box(JsonFields& parent, const std::string& key) {
         if (!q[i].is_number()) f.fail("orientation_wxyz", "expected an array of 4 numbers");
         wxyz[i] = q[i].get<double>();
     }
-    box.orientation = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
-    if (!(std::abs(box.orientation.norm() - 1.0) <= kUnitNormTolerance)) {
-        f.fail("orientation_wxyz", "not a unit quaternion");
-    }
+    const Eigen::Quaterniond orientation(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+    if (!(std::abs(orientation.norm() - 1.0) <= kUnitNormTolerance)) f.fail("orientation_wxyz", "not a unit quaternion");
+    return orientation;
+}
+
+Eigen::Isometry3d read_pose(JsonFields& parent, const std::string& key) {
+    JsonFields f(parent.object(key), parent.file(), parent.path_of(key));
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = f.vec3("position_m");
+    pose.linear() = read_quaternion(f).normalized().toRotationMatrix();
+    f.reject_unknown_keys();
+    return pose;
+}
+
+OrientedBox read_box(JsonFields& parent, const std::string& key) {
+    JsonFields f(parent.object(key), parent.file(), parent.path_of(key));
+    OrientedBox box;
+    box.centre = f.vec3("centre_m");
+    box.size = f.vec3("size_m");
+    if ((box.size.array() < 0.0).any()) f.fail("size_m", "sizes must not be negative");
+    box.orientation = read_quaternion(f);
     f.reject_unknown_keys();
     return box;
 }
@@ -68,6 +86,7 @@ FrameGroundTruth read_frame(const nlohmann::json& json, const std::string& file,
     frame.index = static_cast<std::uint64_t>(f.integer("index", 0, std::numeric_limits<long long>::max()));
     frame.start_time_s = f.number("start_time_s", -kAnyNumber, kAnyNumber);
     frame.end_time_s = f.number("end_time_s", frame.start_time_s, kAnyNumber);
+    if (f.has("sensor_pose")) frame.sensor_pose = read_pose(f, "sensor_pose");
     const auto& objects = f.array("objects");
     for (std::size_t i = 0; i < objects.size(); ++i) {
         frame.objects.push_back(read_object(objects[i], file, indexed(f.path_of("objects"), i)));
@@ -86,7 +105,7 @@ nlohmann::json ground_truth_object_json(const GroundTruthObject& o) {
 }
 
 FrameGroundTruth ground_truth_of(const Frame& frame) {
-    return {frame.index, frame.start_time_s, frame.end_time_s, frame.ground_truth};
+    return {frame.index, frame.start_time_s, frame.end_time_s, frame.ground_truth, frame.sensor_pose};
 }
 
 void write_ground_truth_json(const std::filesystem::path& path, const std::vector<FrameGroundTruth>& frames) {
@@ -94,10 +113,10 @@ void write_ground_truth_json(const std::filesystem::path& path, const std::vecto
     for (const auto& frame : frames) {
         nlohmann::json objects = nlohmann::json::array();
         for (const auto& o : frame.objects) objects.push_back(ground_truth_object_json(o));
-        frames_json.push_back({{"index", frame.index},
-                               {"start_time_s", frame.start_time_s},
-                               {"end_time_s", frame.end_time_s},
-                               {"objects", std::move(objects)}});
+        nlohmann::json entry = {{"index", frame.index}, {"start_time_s", frame.start_time_s}, {"end_time_s", frame.end_time_s}};
+        if (frame.sensor_pose) entry["sensor_pose"] = pose_json(*frame.sensor_pose);
+        entry["objects"] = std::move(objects);
+        frames_json.push_back(std::move(entry));
     }
     write_json(path, {{"frames", std::move(frames_json)}});
 }

@@ -13,6 +13,7 @@
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/intensity_scale.h"
 #include "ladarsim/dataset/las_file.h"
+#include "ladarsim/dataset/poses_file.h"
 
 namespace ladarsim {
 
@@ -23,10 +24,16 @@ constexpr std::uint8_t kNeverClassified = 0, kUnclassified = 1, kNoise = 7;
 constexpr double kScale_m = 1e-4;  // 0.1 mm: below float32's rounding of a PCD's coordinates beyond 1.6 km
 constexpr double kScanAngleUnit_deg = 0.006;
 
-/// Where the sensor frame sits in the world: the mount's pose a render's manifest records.
+/// Where the sensor frame sits in the world: the mount's pose a render's manifest records, or a
+/// moving sensor's at each return's own time (sensor_trajectory.txt).
 struct MountPose {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    std::vector<TimedPose> trajectory;  ///< a moving sensor's; empty for a fixed mount
+
+    Eigen::Vector3d to_world(const Eigen::Vector3d& sensor, double time_s) const {
+        return trajectory.empty() ? Eigen::Vector3d(orientation * sensor + position) : Eigen::Vector3d(pose_at(trajectory, time_s) * sensor);
+    }
 };
 
 MountPose read_mount(const std::filesystem::path& manifest_file) {
@@ -41,6 +48,15 @@ MountPose read_mount(const std::filesystem::path& manifest_file) {
     if (q.size() != 4 || !std::all_of(q.begin(), q.end(), [](const nlohmann::json& v) { return v.is_number(); }))
         mount.fail("orientation_wxyz", "is not an array of four numbers");
     pose.orientation = Eigen::Quaterniond(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>()).normalized();
+    if (mount.boolean("moving_platform", false)) {
+        const std::filesystem::path file = manifest_file.parent_path() / "sensor_trajectory.txt";
+        std::error_code ec;
+        if (!std::filesystem::exists(file, ec))
+            throw InputError(file.string(), "(file)", "missing: the sensor moved, and --world needs its pose at each return's time");
+        pose.trajectory = read_sensor_trajectory_txt(file);
+        if (pose.trajectory.empty()) throw InputError(file.string(), "(file)", "holds no pose");
+        pose.position = pose.trajectory.front().world_from_sensor.translation();
+    }
     return pose;
 }
 
@@ -77,7 +93,7 @@ LasCloud las_cloud(const std::vector<Return>& returns, const std::optional<std::
     for (const Return& r : returns) {
         LasPoint p;
         const Eigen::Vector3d sensor = r.position_sensor.cast<double>();
-        p.position = world ? Eigen::Vector3d(world->orientation * sensor + world->position) : sensor;
+        p.position = world ? world->to_world(sensor, r.time_s) : sensor;
         p.intensity = static_cast<std::uint16_t>(std::lround(65535.0 * std::clamp(r.intensity / intensity_scale, 0.0f, 1.0f)));
         p.return_number = static_cast<std::uint8_t>(std::min(r.return_index + 1, 15));
         p.number_of_returns = static_cast<std::uint8_t>(std::clamp(per_beam.at({r.column, r.row}), 1, 15));
@@ -102,7 +118,8 @@ nlohmann::json export_record(const std::filesystem::path& source, bool world, fl
     return {{"software", software_json()},
             {"exported_from", source.string()},
             {"format", "LAS 1.4, point data record format 6, extra bytes object_id (uint32) and intensity_pe (float32)"},
-            {"frame", world ? "world: the mount's pose in manifest.json applied (ENU metres; X, Y, Z offsets the sensor position rounded to metres)"
+            {"frame", world ? "world: the mount's pose in manifest.json applied, or a moving sensor's at each return's time from "
+                              "sensor_trajectory.txt (ENU metres; X, Y, Z offsets the sensor position, where it started, rounded to metres)"
                             : "ladarsim's sensor frame: x forward, y left, z up, metres, sensor at the origin"},
             {"gps_time", "the return's time_s (its pulse's emission), seconds on the dataset's clock (a render's scenario "
                          "time, a recording's timestamps), not GPS time; global encoding bit 0 is 0"},

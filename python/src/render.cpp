@@ -78,7 +78,7 @@ public:
         busy_ = false;
         ++next_;
         PythonFrame f = python_frame(frame);
-        f.pose = pose_array(scenario_->mount.world_from_sensor());
+        f.pose = pose_array(*frame.sensor_pose);
         return f;
     }
 

@@ -48,6 +48,9 @@ Matrix34 to_matrix(const float* column_major) {
 
 struct TracedScene::Impl {
     Eigen::Vector3d origin_world;
+    // Where object_bounds_near's cones start, and how far from there they may (set_viewpoint).
+    Eigen::Vector3d viewpoint_world;
+    double viewpoint_radius_m = 0.0;
     Device device;
     // The static meshes and the background discs, built and committed once; the top scene holds
     // them as one instance with the identity transform, beside the moving instances, so that a new
@@ -66,12 +69,12 @@ struct TracedScene::Impl {
         const scene::SceneObject* object;
         ObjectBounds bounds;
         std::vector<Matrix34> step_world_from_model;
-        // Its sphere over the whole time window, as seen from origin_world: the direction to its
-        // centre, its angular radius, and whether it holds origin_world.
+        // Its sphere over the whole time window, as seen from the viewpoint: the direction to its
+        // centre, its angular radius, and whether it holds the viewpoint.
         Eigen::Vector3d window_direction = Eigen::Vector3d::UnitX();
         double window_angular_radius_rad = 0.0;
         bool window_holds_origin = false;
-        // A static mesh's own sphere (not the window's) as seen from origin_world.
+        // A static mesh's own sphere (not the window's) as seen from the viewpoint.
         double static_angular_radius_rad = 0.0;
     };
     std::vector<BoundsTrack> bounds;
@@ -126,7 +129,7 @@ struct TracedScene::Impl {
         throw std::runtime_error(std::string("Embree error while ") + what + ": " + last_error);
     }
 
-    Impl(const scene::Scene& scene, const Eigen::Vector3d& origin) : origin_world(origin) {
+    Impl(const scene::Scene& scene, const Eigen::Vector3d& origin) : origin_world(origin), viewpoint_world(origin) {
         device.reset(rtcNewDevice(nullptr));
         if (!device) throw std::runtime_error("Embree: could not create a device (unsupported CPU?)");
         rtcSetDeviceErrorFunction(device.get(), &Impl::on_error, this);
@@ -312,13 +315,13 @@ struct TracedScene::Impl {
         }
         const Eigen::Vector3d centre = centres.center();
         // Padded by a millionth for the rounding of the per-ray placement it must hold.
-        const double radius = (0.5 * centres.sizes().norm() + track.bounds.radius_m) * (1.0 + 1e-6) + 1e-9;
-        const Eigen::Vector3d to_centre = centre - origin_world;
+        const double radius = (0.5 * centres.sizes().norm() + track.bounds.radius_m) * (1.0 + 1e-6) + 1e-9 + viewpoint_radius_m;
+        const Eigen::Vector3d to_centre = centre - viewpoint_world;
         const double distance = to_centre.norm();
         track.window_holds_origin = distance <= radius;
         track.window_direction = track.window_holds_origin ? Eigen::Vector3d::UnitX() : Eigen::Vector3d(to_centre / distance);
         track.window_angular_radius_rad = track.window_holds_origin ? std::numbers::pi : std::asin(radius / distance);
-        const double own_distance = (track.bounds.centre_world - origin_world).norm();
+        const double own_distance = (track.bounds.centre_world - viewpoint_world).norm();
         track.static_angular_radius_rad = own_distance <= track.bounds.radius_m ? std::numbers::pi / 2.0
                                                                                 : std::asin(track.bounds.radius_m / own_distance);
     }
@@ -463,6 +466,13 @@ TracedScene::~TracedScene() = default;
 
 void TracedScene::set_time_window(double begin_s, double end_s, int motion_steps) {
     impl_->set_time_window(begin_s, end_s, motion_steps);
+}
+
+void TracedScene::set_viewpoint(const Eigen::Vector3d& centre_world, double radius_m) {
+    impl_->viewpoint_world = centre_world;
+    impl_->viewpoint_radius_m = radius_m;
+    impl_->window_id = ++Impl::windows_set;  // the cones' limits cached per window are stale
+    for (Impl::BoundsTrack& track : impl_->bounds) impl_->set_window_sphere(track);
 }
 
 std::optional<Hit> TracedScene::trace(const Ray& ray) const {

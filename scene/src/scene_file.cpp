@@ -75,6 +75,8 @@ Trajectory read_keyframes(JsonFields& t) {
     return Trajectory::keyframes(std::move(keys), interpolation);
 }
 
+}  // namespace
+
 Trajectory read_trajectory(JsonFields& t) {
     const std::string type =
         required_choice(t, "type", {"fixed", "straight", "approach", "winding", "hover", "keyframes"});
@@ -107,6 +109,8 @@ Trajectory read_trajectory(JsonFields& t) {
     t.reject_unknown_keys();
     return trajectory;
 }
+
+namespace {
 
 /// Names of the classes a scenario object may have: every class but the recorded background.
 std::vector<std::string> object_class_names() {

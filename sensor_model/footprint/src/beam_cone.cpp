@@ -47,7 +47,7 @@ void BeamCone::find(const BeamAim& aim, TargetsInCone& out) const {
     context_.traced.object_bounds_near(aim.world_from_beam.col(0), std::max(1.0, ellipticity) * r_max,
                                        1.0 + 1.01 * std::max(ellipticity, 1.0 / ellipticity), aim.time_s, context_.small_object_rad,
                                        out.objects);
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
+    const Eigen::Vector3d& origin = aim.origin_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     out.media = false;
     out.outline.reset();
@@ -72,7 +72,7 @@ void BeamCone::find(const BeamAim& aim, TargetsInCone& out) const {
             out.media = true;
             continue;
         }
-        const std::optional<FootprintRect> seen = outline_of(b, inside, beam_from_world);
+        const std::optional<FootprintRect> seen = outline_of(b, inside, aim);
         if (!seen) continue;
         ++out.count;
         // Its seeds, and the largest echo it could send back: its outline's share at its brightest
@@ -97,10 +97,11 @@ void BeamCone::find(const BeamAim& aim, TargetsInCone& out) const {
     }
 }
 
-std::optional<FootprintRect> BeamCone::outline_of(const raytrace::ObjectBounds& b, bool inside, const Eigen::Matrix3d& beam_from_world) const {
+std::optional<FootprintRect> BeamCone::outline_of(const raytrace::ObjectBounds& b, bool inside, const BeamAim& aim) const {
     const Footprint& footprint = context_.shape.footprint();
     const double r_max = footprint.max_offset_rad();
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
+    const Eigen::Vector3d& origin = aim.origin_world;
+    const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     // The outline of the object's box as the beam sees it: its eight corners' offsets.
     FootprintRect outline{r_max, -r_max, r_max, -r_max};
     bool in_front = !inside;
@@ -123,9 +124,10 @@ std::optional<FootprintRect> BeamCone::outline_of(const raytrace::ObjectBounds& 
     return footprint.clip(outline);
 }
 
-void BeamCone::seed_offsets(const raytrace::ObjectBounds& b, const std::vector<Eigen::Vector3d>& points,
-                            const Eigen::Matrix3d& beam_from_world, std::vector<Eigen::Vector2d>& out) const {
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
+void BeamCone::seed_offsets(const raytrace::ObjectBounds& b, const std::vector<Eigen::Vector3d>& points, const BeamAim& aim,
+                            std::vector<Eigen::Vector2d>& out) const {
+    const Eigen::Vector3d& origin = aim.origin_world;
+    const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     const double ellipticity = context_.shape.ellipticity();
     // Nearest the axis by the tangents of the offsets (as good as the angles this close to it).
     thread_local std::vector<std::pair<double, Eigen::Vector3d>> candidates;
@@ -147,12 +149,11 @@ void BeamCone::seed_offsets(const raytrace::ObjectBounds& b, const std::vector<E
 
 void BeamCone::add_seeds(const BeamAim& aim, const TargetsInCone& targets, std::vector<Probe>& seeds, std::vector<ProbeHit>& hits,
                          std::vector<const Probe*>& witnesses, BeamEchoes& out) const {
-    const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
     thread_local std::vector<Eigen::Vector2d> seeds_at;
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> results;
     seeds_at.clear();
-    for (const auto& [b, points] : targets.with_seeds) seed_offsets(*b, *points, beam_from_world, seeds_at);
+    for (const auto& [b, points] : targets.with_seeds) seed_offsets(*b, *points, aim, seeds_at);
     if (seeds_at.empty()) return;
     seeds.clear();
     rays.clear();
@@ -162,7 +163,7 @@ void BeamCone::add_seeds(const BeamAim& aim, const TargetsInCone& targets, std::
     out.rays += static_cast<int>(rays.size());
     hits.resize(rays.size());  // before any pointer into it is taken
     for (std::size_t k = 0; k < rays.size(); ++k) {
-        hits[k].set(results[k], context_.settings.origin_world, rays[k].direction);
+        hits[k].set(results[k], aim.origin_world, rays[k].direction);
         seeds.push_back({seeds_at[k].x(), seeds_at[k].y(), context_.shape.irradiance(seeds_at[k].x(), seeds_at[k].y()), rays[k].direction,
                          &hits[k]});
     }

@@ -47,10 +47,10 @@ private:
     };
     /// The outline of object `b` (its bounding sphere passed the cone test) in the footprint, or
     /// nothing where it lies outside.
-    std::optional<FootprintRect> outline_of(const raytrace::ObjectBounds& b, bool inside, const Eigen::Matrix3d& beam_from_world) const;
+    std::optional<FootprintRect> outline_of(const raytrace::ObjectBounds& b, bool inside, const BeamAim& aim) const;
     /// Appends the footprint offsets of the points of target `b` (its seed candidates `points`)
     /// nearest the beam's axis, those inside the truncation.
-    void seed_offsets(const raytrace::ObjectBounds& b, const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix3d& beam_from_world,
+    void seed_offsets(const raytrace::ObjectBounds& b, const std::vector<Eigen::Vector3d>& points, const BeamAim& aim,
                       std::vector<Eigen::Vector2d>& out) const;
 
     const FootprintContext& context_;

@@ -74,7 +74,7 @@ Integration CurvedPatch::integrate(const BeamSetting& beam, const FootprintPart&
     const double range = patch->range_m;
     const double energy = context_.echo_energy_j(weight, 1.0, 1.0, range, 1.0) * (range * range + context_.aperture_radius2) * patch->seen;
     out.surface.push_back({range, weight, energy, patch->spread_m, chain.front().object_id,
-                           context_.settings.origin_world + range * beam.aim.world_from_beam.col(0), normal.cast<float>()});
+                           beam.aim.origin_world + range * beam.aim.world_from_beam.col(0), normal.cast<float>()});
     return {Outcome::integrated, weight};
 }
 

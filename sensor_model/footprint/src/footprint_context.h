@@ -34,7 +34,7 @@ struct FootprintContext {
     /// A ray leaving the sensor at the beam's time towards footprint offset (x, y).
     raytrace::Ray ray(const BeamAim& aim, double x_rad, double y_rad) const {
         raytrace::Ray r;
-        r.origin_world = settings.origin_world;
+        r.origin_world = aim.origin_world;
         r.direction = aim.world_from_beam * shape.in_beam(x_rad, y_rad);
         r.time_s = aim.time_s;
         r.max_range_m = max_range_m;

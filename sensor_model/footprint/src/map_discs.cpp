@@ -60,7 +60,8 @@ std::uint32_t MapDiscs::build(std::uint32_t begin, std::uint32_t end) {
     return index;
 }
 
-void MapDiscs::in_cone(const Eigen::Vector3d& axis, double tan_half, double max_range_m, std::vector<std::uint32_t>& out) const {
+void MapDiscs::in_cone(const Eigen::Vector3d& apex, const Eigen::Vector3d& axis, double tan_half, double max_range_m,
+                       std::vector<std::uint32_t>& out) const {
     out.clear();
     if (nodes_.empty()) return;
     std::uint32_t stack[64];
@@ -68,7 +69,7 @@ void MapDiscs::in_cone(const Eigen::Vector3d& axis, double tan_half, double max_
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[stack[--top]];
-        if (!sphere_in_cone(node.centre, node.radius, axis, tan_half, max_range_m)) continue;
+        if (!sphere_in_cone(node.centre - apex, node.radius, axis, tan_half, max_range_m)) continue;
         if (node.count == 0) {
             const auto self = static_cast<std::uint32_t>(&node - nodes_.data());
             stack[top++] = node.first;
@@ -77,7 +78,7 @@ void MapDiscs::in_cone(const Eigen::Vector3d& axis, double tan_half, double max_
         }
         for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
             const std::uint32_t i = order_[k];
-            if (sphere_in_cone(centre_[i], radius_[i], axis, tan_half, max_range_m)) out.push_back(i);
+            if (sphere_in_cone(centre_[i] - apex, radius_[i], axis, tan_half, max_range_m)) out.push_back(i);
         }
     }
 }

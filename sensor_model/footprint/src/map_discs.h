@@ -16,9 +16,11 @@ public:
     MapDiscs(const scene::BackgroundMap& map, const Eigen::Vector3d& origin_world);
 
     /// Appends to `out` (cleared first) every disc whose bounding sphere may meet the cone of apex
-    /// the origin, unit axis `axis`, half-angle atan(`tan_half`), up to `max_range_m` (a superset:
-    /// each leaf's box is tested by its sphere).
-    void in_cone(const Eigen::Vector3d& axis, double tan_half, double max_range_m, std::vector<std::uint32_t>& out) const;
+    /// `apex` (relative to the origin: a sensor on a moving platform has left it), unit axis
+    /// `axis`, half-angle atan(`tan_half`), up to `max_range_m` (a superset: each leaf's box is
+    /// tested by its sphere).
+    void in_cone(const Eigen::Vector3d& apex, const Eigen::Vector3d& axis, double tan_half, double max_range_m,
+                 std::vector<std::uint32_t>& out) const;
 
     const Eigen::Vector3d& centre(std::uint32_t i) const { return centre_[i]; }  ///< relative to the origin
     const Eigen::Vector3d& normal(std::uint32_t i) const { return normal_[i]; }

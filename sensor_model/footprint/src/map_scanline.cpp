@@ -35,13 +35,13 @@ MapScanline::MapScanline(const FootprintContext& context, const MapDiscs& discs,
     tan_half_ = 1.01 * std::tan(rho * std::max(1.0, ell)) * std::sqrt(2.0);
 }
 
-void MapScanline::chords_on_lines(const Eigen::Matrix3d& R, std::vector<std::vector<DiscChord>>& on_line) const {
+void MapScanline::chords_on_lines(const Eigen::Matrix3d& R, const Eigen::Vector3d& apex, std::vector<std::vector<DiscChord>>& on_line) const {
     thread_local std::vector<std::uint32_t> candidates;
-    discs_.in_cone(R.col(0), tan_half_, context_.max_range_m, candidates);
+    discs_.in_cone(apex, R.col(0), tan_half_, context_.max_range_m, candidates);
     on_line.resize(lines_.size());
     for (auto& c : on_line) c.clear();
     for (const std::uint32_t i : candidates) {
-        const Eigen::Vector3d p = R.transpose() * discs_.centre(i);
+        const Eigen::Vector3d p = R.transpose() * (discs_.centre(i) - apex);
         const double r = discs_.radius(i);
         if (!(p.x() > r)) continue;  // holds the sensor's plane: nothing a beam ahead meets
         const Eigen::Vector3d n = R.transpose() * discs_.normal(i);
@@ -100,10 +100,10 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
     const Footprint& footprint = context_.shape.footprint();
     const double ell = context_.shape.ellipticity();
     const Eigen::Matrix3d& R = beam.aim.world_from_beam;
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
+    const Eigen::Vector3d& origin = beam.aim.origin_world;
 
     thread_local std::vector<std::vector<DiscChord>> on_line;
-    chords_on_lines(R, on_line);
+    chords_on_lines(R, origin - context_.settings.origin_world, on_line);
     thread_local std::vector<VisiblePiece> pieces;
     thread_local std::vector<std::uint32_t> line_start;
     const double part_weight = visible_pieces(on_line, part, pieces, line_start);

@@ -34,8 +34,9 @@ private:
         double x_rad, X, y_max_rad, t_max, weight;
     };
 
-    /// Every candidate disc's chord on each line its sphere spans in azimuth (beam frame `R`).
-    void chords_on_lines(const Eigen::Matrix3d& R, std::vector<std::vector<DiscChord>>& on_line) const;
+    /// Every candidate disc's chord on each line its sphere spans in azimuth (beam frame `R`, the
+    /// beam leaving `apex`, relative to the discs' origin).
+    void chords_on_lines(const Eigen::Matrix3d& R, const Eigen::Vector3d& apex, std::vector<std::vector<DiscChord>>& on_line) const;
     /// Per line, the visible pieces over `part` (outside its excluded rectangle; lower_envelope
     /// orders each line's chords), line k's from line_start[k] to line_start[k + 1]. Returns the
     /// beam's weight over the part.

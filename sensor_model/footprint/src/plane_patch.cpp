@@ -19,7 +19,7 @@ PlanePatch::PlanePatch(const FootprintContext& context, const CurvedPatch& curve
 }
 
 Integration PlanePatch::integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const {
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
+    const Eigen::Vector3d& origin = beam.aim.origin_world;
     const Footprint& footprint = context_.shape.footprint();
     const double weight = part.share;
     // The probes outside the excluded part speak for the patch, each weighted by the beam's

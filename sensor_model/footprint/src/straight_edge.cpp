@@ -138,7 +138,7 @@ Seen EdgeFit::seen_of(const std::optional<raytrace::Hit>& hit, const Eigen::Vect
     seen.reflectance = hit->reflectance;
     seen.cos_incidence = hit->cos_incidence;
     // Its echo (an exponential) only where it is used.
-    seen.echo = {hit->range_m, 1.0, -1.0, 0.0, hit->object_id, context_->settings.origin_world + hit->range_m * direction,
+    seen.echo = {hit->range_m, 1.0, -1.0, 0.0, hit->object_id, beam_->aim.origin_world + hit->range_m * direction,
                  hit->normal_world, 0};
     return seen;
 }
@@ -401,7 +401,7 @@ void StraightEdge::profile_in_range(const BeamAim& aim, std::span<const RangeSam
     if (in_plane_normal.norm() > 0.0) like.normal_world = (aim.world_from_beam * in_plane_normal.normalized()).cast<float>();
     like.sample = 0;
     out.surface.resize(first);
-    const Eigen::Vector3d& origin = context_.settings.origin_world;
+    const Eigen::Vector3d& origin = aim.origin_world;
     for (const RangeSlice& slice : slices) {
         SurfaceEcho e = like;
         e.range_m = slice.range_m;

@@ -77,7 +77,8 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         }
     }
     if (integrator_.adaptive()) find_neighbours();
-    if (integrator_.adaptive() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
+    // The lattice shares sub-rays traced from one place along a line: not from a moving platform.
+    if (integrator_.adaptive() && !scenario.mount.moves() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
         target_lattice_ = std::make_unique<TargetLattice>(traced_, raster_, integrator_.shape(), radiometry_, integrator_.grid_base(),
                                                           scenario.mount.position_world,
                                                           world_from_sensor_rotation_, scenario.sensor.receiver.max_range_m,
@@ -164,7 +165,7 @@ GimbalPointing FrameRenderer::cue_pointing(double time_s) const {
     for (const auto& object : scenario_.scene.objects) {
         if (object.id != scenario_.mount.cue_object_id) continue;
         const Eigen::Vector3d in_sensor =
-            scenario_.mount.world_from_sensor().inverse() * object_centre_world(object, time_s);
+            scenario_.mount.world_from_sensor(time_s).inverse() * object_centre_world(object, time_s);
         return pointing_towards(in_sensor);
     }
     return {};
@@ -192,8 +193,38 @@ BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, const Eigen::Quater
     // sensor_from_beam(pointing, az offset, el offset), composed in the same order.
     const auto& offset = offset_rotations_[static_cast<std::size_t>(beam.row * raster_.columns() + step)];
     a.world_from_beam = world_from_sensor_rotation_ * ((gimbal * offset[0]) * offset[1]).toRotationMatrix();
+    a.origin_world = scenario_.mount.position_world;
     a.time_s = frame_start_s + beam.time_offset_s;
     a.cell = static_cast<std::uint32_t>(beam.row * raster_.columns() + step);  // keys the beam's random draws
+    return a;
+}
+
+Eigen::Vector3d FrameRenderer::stare_point(std::uint64_t index, GimbalPointing pointing) const {
+    const double t = frame_start_s(index);
+    const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor(t);
+    double distance = 0.0;
+    for (const auto& object : scenario_.scene.objects)
+        if (object.id == scenario_.mount.cue_object_id) distance = (object_centre_world(object, t) - world_from_sensor.translation()).norm();
+    return world_from_sensor * (distance * direction_towards(pointing));
+}
+
+BeamAim FrameRenderer::aim_moving(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const {
+    BeamAim a;
+    a.time_s = frame_start_s + beam.time_offset_s;
+    const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor(a.time_s);
+    if (stare_point_) {
+        // Stabilised: the gimbal turns against the platform's motion to hold its stare point,
+        // within its limits and slew rate (from where the frame started it).
+        Gimbal g(scenario_.sensor.gimbal, pointing);
+        g.slew_towards(pointing_towards(world_from_sensor.inverse() * *stare_point_), a.time_s - frame_start_s);
+        pointing = g.pointing();
+    }
+    const Eigen::Quaterniond gimbal = Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) *
+                                      Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
+    const auto& offset = offset_rotations_[static_cast<std::size_t>(beam.row * raster_.columns() + step)];
+    a.world_from_beam = world_from_sensor.linear() * ((gimbal * offset[0]) * offset[1]).toRotationMatrix();
+    a.origin_world = world_from_sensor.translation();
+    a.cell = static_cast<std::uint32_t>(beam.row * raster_.columns() + step);
     return a;
 }
 
@@ -201,9 +232,11 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     const Eigen::Quaterniond gimbal = Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) *
                                       Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
     const int columns = raster_.columns();
+    const bool moving = scenario_.mount.moves();
     for (int step = 0; step < columns; ++step) {
         const RasterBeam beam = raster_.beam(row, step);
-        aims_[static_cast<std::size_t>(row * columns + beam.column)] = aim(beam, step, gimbal, frame_start_s);
+        aims_[static_cast<std::size_t>(row * columns + beam.column)] =
+            moving ? aim_moving(beam, step, pointing, frame_start_s) : aim(beam, step, gimbal, frame_start_s);
     }
     if (!integrator_.adaptive()) return 0;
 
@@ -212,9 +245,9 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     thread_local std::vector<ProbeHit*> slots;
     rays.clear();
     slots.clear();
-    auto add = [&](const Eigen::Vector3d& direction, double time_s, ProbeHit* slot) {
+    auto add = [&](const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double time_s, ProbeHit* slot) {
         raytrace::Ray r;
-        r.origin_world = scenario_.mount.position_world;
+        r.origin_world = origin;
         r.direction = direction;
         r.time_s = time_s;
         r.max_range_m = scenario_.sensor.receiver.max_range_m;
@@ -225,11 +258,11 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     for (int step = 0; step < columns; ++step) {
         const std::size_t cell = static_cast<std::size_t>(row * columns + raster_.beam(row, step).column);
         const BeamAim& a = aims_[cell];
-        add(a.world_from_beam.col(0), a.time_s, &axis_hit_[cell]);
+        add(a.origin_world, a.world_from_beam.col(0), a.time_s, &axis_hit_[cell]);
         for (int k = 0; k < 4; ++k) {
             if (!(extra_mask_[cell] & (1u << k))) continue;
             extra_direction_[4 * cell + k] = a.world_from_beam * integrator_.shape().in_beam(extra_offsets_[k].x(), extra_offsets_[k].y());
-            add(extra_direction_[4 * cell + k], a.time_s, &extra_hit_[4 * cell + k]);
+            add(a.origin_world, extra_direction_[4 * cell + k], a.time_s, &extra_hit_[4 * cell + k]);
         }
     }
     hits.resize(rays.size());
@@ -241,7 +274,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
 std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_step, std::uint64_t frame,
                                                std::uint64_t& rays, std::vector<WaveformWindow>* windows) const {
     const auto& sensor = scenario_.sensor;
-    const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
+    const Eigen::Matrix3d fixed_sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
     const double photoelectrons_per_joule = sensor.receiver.responsivity_a_per_w / kElementaryCharge_c;
     thread_local std::vector<Probe> probes;
@@ -287,6 +320,10 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
                 (*windows)[w].time_s = a.time_s;
             }
         if (detected.empty()) continue;
+        // In the sensor frame at the pulse's time, as a real sensor reports it.
+        const Eigen::Matrix3d sensor_from_world = scenario_.mount.moves()
+                                                      ? Eigen::Matrix3d(scenario_.mount.world_from_sensor(a.time_s).linear().transpose())
+                                                      : fixed_sensor_from_world;
         const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);
         for (const DetectedReturn& d : detected) {
@@ -312,7 +349,7 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
 }
 
 std::vector<GroundTruthObject> FrameRenderer::ground_truth(double time_s, const std::vector<Return>& returns) const {
-    const Eigen::Isometry3d sensor_from_world = scenario_.mount.world_from_sensor().inverse();
+    const Eigen::Isometry3d sensor_from_world = scenario_.mount.world_from_sensor(time_s).inverse();
     const Eigen::Quaterniond sensor_from_world_rotation(sensor_from_world.linear());
     std::vector<GroundTruthObject> truth;
     for (const auto& object : scenario_.scene.objects) {
@@ -350,6 +387,7 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     frame.rows = raster_.rows();
     frame.gimbal_az_rad = pointing.az_rad;
     frame.gimbal_el_rad = pointing.el_rad;
+    frame.sensor_pose = scenario_.mount.world_from_sensor(frame.start_time_s);
 
     traced_.set_time_window(frame.start_time_s, frame.end_time_s, scenario_.render.motion_steps);
 
@@ -362,9 +400,17 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
         extra_direction_.resize(4 * cells);
         extra_hit_.resize(4 * cells);
     }
+    stare_point_.reset();
+    if (scenario_.mount.moves() && scenario_.mount.cue_object_id != 0) stare_point_ = stare_point(index, pointing);
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
+    if (scenario_.mount.moves()) {
+        // The cones of targets are tested from where the sensor was over the frame.
+        Eigen::AlignedBox3d origins;
+        for (const BeamAim& a : aims_) origins.extend(a.origin_world);
+        traced_.set_viewpoint(origins.center(), 0.5 * origins.diagonal().norm());
+    }
     if (target_lattice_) target_lattice_->start_frame(pointing, index, frame.start_time_s);
     // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
     // stretches keep both cores busy.

@@ -49,19 +49,21 @@ std::pair<int, int> first_and_count(int frames, Test test) {
 
 std::vector<std::string> geometry_warnings(const Scenario& scenario, FrameRenderer& renderer, int frames) {
     std::vector<std::string> warnings;
-    const Eigen::Isometry3d sensor_from_world = scenario.mount.world_from_sensor().inverse();
-    const Eigen::Vector3d sensor = scenario.mount.position_world;
     const Receiver& receiver = scenario.sensor.receiver;
     auto time_of = [&](int k) { return renderer.frame_start_s(static_cast<std::uint64_t>(k)); };
+    // Where the sensor is as frame k starts (a moving platform's pose changes frame by frame).
+    auto pose_of = [&](int k) { return scenario.mount.world_from_sensor(time_of(k)); };
 
     // The sensor inside an object: its beams meet surfaces right at the sensor. Every beam's axis
     // at the first, middle and last frame's pointing is traced; a hit closer than the receiver's
     // minimum range (or 0.1 m without one) cannot be what the user meant.
     const double too_close_m = receiver.min_range_m > 0.0 ? receiver.min_range_m : 0.1;
     const ScanPattern& scan = renderer.raster();
-    const Eigen::Matrix3d world_from_sensor = scenario.mount.world_from_sensor().linear();
     for (const int k : {0, frames / 2, frames - 1}) {
         if (k < 0) continue;
+        const Eigen::Isometry3d world_from_sensor_k = pose_of(k);
+        const Eigen::Vector3d sensor = world_from_sensor_k.translation();
+        const Eigen::Matrix3d world_from_sensor = world_from_sensor_k.linear();
         const GimbalPointing pointing = renderer.gimbal_pointing(static_cast<std::uint64_t>(k));
         std::vector<raytrace::Ray> rays;
         for (int row = 0; row < scan.rows(); ++row) {
@@ -104,6 +106,7 @@ std::vector<std::string> geometry_warnings(const Scenario& scenario, FrameRender
     // Deeper inside, its walls beyond the minimum range: the six rays along the world's axes all
     // meet the same object (a building's walls, floor and roof), which returns from within.
     if (warnings.empty()) {
+        const Eigen::Vector3d sensor = pose_of(0).translation();
         std::vector<raytrace::Ray> axes;
         for (int axis = 0; axis < 6; ++axis) {
             raytrace::Ray ray;
@@ -138,7 +141,7 @@ std::vector<std::string> geometry_warnings(const Scenario& scenario, FrameRender
         const Gimbal gimbal(limits, GimbalPointing{});
         GimbalPointing wanted{};
         const auto [first, count] = first_and_count(frames, [&](int k) {
-            const GimbalPointing cue = pointing_towards(sensor_from_world * object_centre_world(o, time_of(k)));
+            const GimbalPointing cue = pointing_towards(pose_of(k).inverse() * object_centre_world(o, time_of(k)));
             const GimbalPointing reachable = gimbal.clamp(cue);
             const bool out = std::abs(reachable.az_rad - cue.az_rad) > 1e-9 || std::abs(reachable.el_rad - cue.el_rad) > 1e-9;
             if (out && wanted.az_rad == 0.0 && wanted.el_rad == 0.0) wanted = cue;
@@ -158,7 +161,7 @@ std::vector<std::string> geometry_warnings(const Scenario& scenario, FrameRender
         if (!of_interest) continue;
         double range_m = 0.0;
         const auto [first, count] = first_and_count(frames, [&](int k) {
-            const double r = (object_centre_world(o, time_of(k)) - sensor).norm();
+            const double r = (object_centre_world(o, time_of(k)) - pose_of(k).translation()).norm();
             if (r > receiver.max_range_m && range_m == 0.0) range_m = r;
             return r > receiver.max_range_m;
         });

@@ -44,6 +44,15 @@ std::size_t write_background_map(const Scenario& scenario, const PointingExtent&
         return 0;
     }
     survey.mount.cue_object_id = 0;
+    if (survey.mount.moves()) {
+        // A map in the sensor frame is of one place: on a moving platform, where the first frame
+        // starts (docs/scenario.md, "A moving platform").
+        const Eigen::Isometry3d start = survey.mount.world_from_sensor(scenario.render.start_time_s);
+        survey.mount.position_world = start.translation();
+        survey.mount.orientation = Eigen::Quaterniond(start.linear());
+        survey.mount.platform.reset();
+        survey.mount.sway = {};
+    }
     survey.render.noise = false;
     survey.render.jitter = false;
     survey.render.footprint_samples = 1;

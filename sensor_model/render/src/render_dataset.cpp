@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
@@ -33,7 +34,32 @@ nlohmann::json mount_json(const SensorMount& m) {
     };
     if (m.gimbal_az_deg) j["gimbal_az_deg"] = *m.gimbal_az_deg;
     if (m.gimbal_el_deg) j["gimbal_el_deg"] = *m.gimbal_el_deg;
+    // Only on a moving platform (a fixed mount keeps the manifest it always had): position_m is
+    // then where the platform started and orientation_wxyz the mount's on it; the poses are in
+    // poses.txt and sensor_trajectory.txt.
+    if (m.moves()) j["moving_platform"] = true;
     return j;
+}
+
+/// Samples of a moving sensor's pose for motion compensation: every millisecond of each frame's
+/// scan, and its end. Linear and slerp interpolation between them (pose_at) is then within
+/// (2 pi f)^2 A dt^2 / 8 of the truth for a sway of amplitude A at frequency f: 0.2 microradians
+/// for 2 degrees at 1 Hz.
+constexpr double kTrajectorySample_s = 1e-3;
+
+std::vector<TimedPose> sensor_trajectory(const Scenario& scenario, const FrameRenderer& renderer, int frames) {
+    std::vector<TimedPose> poses;
+    const double scan_s = renderer.raster().frame_scan_duration_s();
+    const int steps = std::max(1, static_cast<int>(std::ceil(scan_s / kTrajectorySample_s)));
+    for (int k = 0; k < frames; ++k) {
+        const double start = renderer.frame_start_s(static_cast<std::uint64_t>(k));
+        for (int i = 0; i <= steps; ++i) {
+            const double t = i == steps ? start + scan_s : start + i * kTrajectorySample_s;
+            if (!poses.empty() && !(t > poses.back().time_s)) continue;  // a frame that starts as the last ends
+            poses.push_back({t, scenario.mount.world_from_sensor(t)});
+        }
+    }
+    return poses;
 }
 
 nlohmann::json render_json(const RenderSettings& r) {
@@ -207,9 +233,11 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     if (!first_process) return summary;
 
     write_ground_truth_json(staging / "ground_truth.json", truth);
-    // The sensor stands still on its mount: every frame has the mount's pose.
-    write_poses_txt(staging / "poses.txt",
-                    std::vector<Eigen::Isometry3d>(static_cast<std::size_t>(summary.frames), scenario.mount.world_from_sensor()));
+    // Each frame's pose at its start (a fixed mount's, every frame the same).
+    std::vector<Eigen::Isometry3d> poses;
+    for (int k = 0; k < summary.frames; ++k) poses.push_back(scenario.mount.world_from_sensor(renderer.frame_start_s(static_cast<std::uint64_t>(k))));
+    write_poses_txt(staging / "poses.txt", poses);
+    if (scenario.mount.moves()) write_sensor_trajectory_txt(staging / "sensor_trajectory.txt", sensor_trajectory(scenario, renderer, summary.frames));
     summary.background_points = survey->points();
     write_manifest(staging / "manifest.json",
                    {to_json(scenario.sensor), frame_log,

@@ -15,17 +15,46 @@ Eigen::Isometry3d SensorMount::world_from_sensor() const {
     return scene::Pose{position_world, orientation}.world_from_object();
 }
 
+Eigen::Isometry3d SensorMount::world_from_sensor(double time_s) const {
+    if (!platform) return world_from_sensor();
+    Eigen::Isometry3d pose = platform->at(time_s).world_from_object();
+    if (!sway.empty()) pose = pose * sway.at(time_s);
+    return pose.rotate(orientation.normalized());
+}
+
 namespace {
 
+/// The mount; on a moving platform, its position_world is set once the render's start time is
+/// known (read_scenario).
 SensorMount read_mount(JsonFields& sensor) {
     SensorMount m;
-    m.position_world = sensor.vec3("position_m");
+    if (sensor.has("trajectory")) {
+        if (sensor.has("position_m"))
+            sensor.fail("position_m", "is given beside sensor.trajectory, which places the sensor; give one of them");
+        JsonFields trajectory(sensor.object("trajectory"), sensor.file(), sensor.path_of("trajectory"));
+        m.platform = scene::read_trajectory(trajectory);
+    } else {
+        m.position_world = sensor.vec3("position_m");
+    }
+    if (sensor.has("sway")) {
+        JsonFields sway(sensor.object("sway"), sensor.file(), sensor.path_of("sway"));
+        m.sway = read_platform_sway(sway);
+        sway.reject_unknown_keys();
+        if (!m.platform) m.platform = scene::Trajectory::fixed(scene::Pose{m.position_world, Eigen::Quaterniond::Identity()});
+    }
     m.orientation = scene::orientation_from_ypr_deg(sensor.number("yaw_deg", -360.0, 360.0, 0.0),
                                                     sensor.number("pitch_deg", -90.0, 90.0, 0.0),
                                                     sensor.number("roll_deg", -180.0, 180.0, 0.0));
     if (sensor.has("gimbal_az_deg")) m.gimbal_az_deg = sensor.number("gimbal_az_deg", -180.0, 180.0);
     if (sensor.has("gimbal_el_deg")) m.gimbal_el_deg = sensor.number("gimbal_el_deg", -90.0, 90.0);
     m.cue_object_id = static_cast<std::uint32_t>(sensor.integer("cue_object", 0, 0xFFFFFFFFLL, 0));
+    if (m.platform && m.platform->is_static() && m.sway.empty()) {
+        // A platform that never moves is a fixed mount: it renders as one, exactly.
+        const scene::Pose pose = m.platform->at(0.0);
+        m.position_world = pose.position;
+        m.orientation = pose.orientation.normalized() * m.orientation;
+        m.platform.reset();
+    }
     return m;
 }
 
@@ -71,6 +100,8 @@ Scenario read_scenario(nlohmann::json source, const std::filesystem::path& file)
         JsonFields atmosphere(top.object("atmosphere"), name, "atmosphere");
         s.atmosphere = read_atmosphere(atmosphere);
     }
+    // The scene is traced relative to where the platform starts (float precision near the sensor).
+    if (s.mount.platform) s.mount.position_world = s.mount.platform->at(s.render.start_time_s).position;
     s.scene = scene::read_scene(top, file.parent_path());
     top.reject_unknown_keys();
 

@@ -6,6 +6,7 @@
 // y left, z up, metres. Beam angles: azimuth positive towards +y (left), elevation positive up,
 // both of the beam's centre direction in the sensor frame.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,10 @@ struct Frame {
     /// Gimbal pointing (of the field centre) at the frame start, radians, sensor frame.
     double gimbal_az_rad = 0.0;
     double gimbal_el_rad = 0.0;
+    /// The sensor's pose (world_from_sensor) at the frame's start, where it is known (a render;
+    /// not a recording). On a moving platform each return's own pose is at its time_s
+    /// (docs/scenario.md, "A moving platform").
+    std::optional<Eigen::Isometry3d> sensor_pose;
 };
 
 }  // namespace ladarsim

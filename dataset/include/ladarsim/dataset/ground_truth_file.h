@@ -1,6 +1,7 @@
 #pragma once
 // Where every object really was, frame by frame: the reference detect/ is scored against.
 //   {"frames": [{"index", "start_time_s", "end_time_s",
+//                "sensor_pose": {"position_m", "orientation_wxyz"} (at the frame's start; optional),
 //                "objects": [{"id", "class", "name", "time_s", "returns",
 //                             "box_world":  {"centre_m": [x, y, z], "size_m": [x, y, z],
 //                                            "orientation_wxyz": [w, x, y, z]},
@@ -22,6 +23,7 @@ struct FrameGroundTruth {
     double start_time_s = 0.0;
     double end_time_s = 0.0;
     std::vector<GroundTruthObject> objects;
+    std::optional<Eigen::Isometry3d> sensor_pose;  ///< world_from_sensor at the frame's start
 };
 
 FrameGroundTruth ground_truth_of(const Frame& frame);

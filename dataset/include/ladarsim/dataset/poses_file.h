@@ -16,4 +16,20 @@ void write_poses_txt(const std::filesystem::path& path, const std::vector<Eigen:
 /// finite numbers or whose rotation is not orthonormal (to 1e-6).
 std::vector<Eigen::Isometry3d> read_poses_txt(const std::filesystem::path& path);
 
+/// A sensor's pose at one time (seconds, the frames' clock).
+struct TimedPose {
+    double time_s = 0.0;
+    Eigen::Isometry3d world_from_sensor = Eigen::Isometry3d::Identity();
+};
+
+/// sensor_trajectory.txt, a moving sensor's pose over time for motion compensation: one line a
+/// sample, its time then the 3 x 4 matrix as in poses.txt (13 numbers), times increasing.
+void write_sensor_trajectory_txt(const std::filesystem::path& path, const std::vector<TimedPose>& poses);
+/// Throws InputError naming the file and line, as read_poses_txt, and for a time not after the
+/// line before's.
+std::vector<TimedPose> read_sensor_trajectory_txt(const std::filesystem::path& path);
+/// The pose at `time_s` between the samples around it: position linear, rotation by slerp;
+/// clamped to the first and last. `poses` must not be empty.
+Eigen::Isometry3d pose_at(const std::vector<TimedPose>& poses, double time_s);
+
 }  // namespace ladarsim

@@ -43,6 +43,10 @@ public:
     /// trajectory at `motion_steps` >= 2 evenly spaced times (Embree interpolates linearly between).
     /// Must be called before tracing, and again for each new time window.
     void set_time_window(double begin_s, double end_s, int motion_steps);
+    /// Where the rays of this time window leave (object_bounds_near's cones): within `radius_m` of
+    /// `centre_world`, a sensor on a moving platform over a frame. Until called, origin_world()
+    /// exactly. Call after set_time_window, for each window.
+    void set_viewpoint(const Eigen::Vector3d& centre_world, double radius_m);
 
     std::optional<Hit> trace(const Ray& ray) const;
     /// Traces many rays at once (Embree streams); results[i] belongs to rays[i].
@@ -65,14 +69,16 @@ public:
     /// `out` in the scene's object order.
     void object_bounds(double time_s, std::vector<ObjectBounds>& out) const;
 
-    /// object_bounds() of only those objects that a cone from origin_world() can meet: the ones
+    /// object_bounds() of only those objects that a cone from the viewpoint can meet: the ones
     /// whose sphere over the whole time window (holding the object at every time in it), its
     /// angular radius beta scaled by `radius_factor`, comes within `half_angle_rad` of `axis_world`
     /// (a unit vector): angle(axis, centre) <= half_angle_rad + radius_factor * beta. Each object's
     /// window sphere is found once per time window, so that a beam tests one dot product per
     /// object instead of placing and testing every object. Static meshes whose sphere subtends
-    /// `static_wider_rad` or more from origin_world (asin(radius / distance); pi / 2 when it
-    /// holds the origin) are left out too. Fills `out` in the scene's object order.
+    /// `static_wider_rad` or more from the viewpoint (asin(radius / distance); pi / 2 when it
+    /// holds it) are left out too. A viewpoint of radius r tests every window sphere grown by r:
+    /// a cone from anywhere within r of its centre meets no object the test leaves out. Fills
+    /// `out` in the scene's object order.
     void object_bounds_near(const Eigen::Vector3d& axis_world, double half_angle_rad, double radius_factor, double time_s,
                             double static_wider_rad, std::vector<ObjectBounds>& out) const;
 

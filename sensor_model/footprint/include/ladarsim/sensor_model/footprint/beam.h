@@ -16,6 +16,7 @@ namespace ladarsim::sensor_model {
 /// Where one beam points and when it fires.
 struct BeamAim {
     Eigen::Matrix3d world_from_beam;  ///< x along the beam, y left, z up
+    Eigen::Vector3d origin_world;     ///< where it leaves: the sensor at its time
     double time_s;
     std::uint32_t cell;               ///< raster cell index: keys the beam's random draws
 };

@@ -61,6 +61,12 @@ private:
     };
     /// `gimbal`: the pointing's rotation, AngleAxis(az, z) * AngleAxis(-el, y).
     BeamAim aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, double frame_start_s) const;
+    /// The same on a moving platform: the sensor's pose at the beam's time, and a cued gimbal
+    /// stabilised on the frame's stare point (stare_point_).
+    BeamAim aim_moving(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const;
+    /// Where a cued gimbal on a moving platform stares during frame `index` (pointing as it starts):
+    /// the point along its line of sight at the cue's distance.
+    Eigen::Vector3d stare_point(std::uint64_t index, GimbalPointing pointing) const;
     void find_neighbours();
     /// Pass 1: where and when the beams of one raster line fire and, for adaptive footprints,
     /// their axes and extra probes traced. Returns the rays traced.
@@ -91,7 +97,9 @@ private:
     /// AngleAxis(-el_offset, y), found once (a frame composes them with the gimbal's exactly as
     /// sensor_from_beam does, without its four sines and cosines per beam).
     std::vector<std::array<Eigen::Quaterniond, 2>> offset_rotations_;
-    Eigen::Matrix3d world_from_sensor_rotation_;  ///< the mount's, found once
+    Eigen::Matrix3d world_from_sensor_rotation_;  ///< a fixed mount's, found once
+    /// On a moving platform with a cue, the frame's stare point (stare_point()).
+    std::optional<Eigen::Vector3d> stare_point_;
     std::vector<std::uint8_t> extra_mask_;          ///< by raster cell (row, column): bit k = extra probe k
     std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
     double extra_irradiance_ = 0.0;

@@ -9,15 +9,26 @@
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/scene/scene.h"
+#include "ladarsim/scene/trajectory.h"
+#include "ladarsim/sensor_model/render/platform_sway.h"
 #include "ladarsim/sensor_model/signal/atmosphere.h"
 #include "ladarsim/sensor_model/sensor/sensor.h"
 
 namespace ladarsim::sensor_model {
 
-/// Where the sensor stands and how its gimbal starts.
+/// Where the sensor stands, or the platform it rides, and how its gimbal starts.
 struct SensorMount {
+    /// A fixed mount's position; on a moving platform, where the platform is at the render's start
+    /// time (the origin the scene is traced relative to, docs/scenario.md).
     Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
-    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< world_from_sensor rotation
+    /// A fixed mount's world_from_sensor rotation; on a moving platform, the mount's own
+    /// orientation on it (platform_from_sensor).
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    /// The moving platform (sensor.trajectory, or a swaying fixed mast): the platform's pose over
+    /// time, its sway on top. Absent for a mount that stands still (a trajectory that never moves
+    /// and has no sway is folded into position_world and orientation when read).
+    std::optional<scene::Trajectory> platform;
+    PlatformSway sway;
     /// Initial pointing of the field centre in the sensor frame; when absent and a cue object is
     /// set, the gimbal starts on the cue (the radar has already handed the target over).
     std::optional<double> gimbal_az_deg;
@@ -25,7 +36,12 @@ struct SensorMount {
     /// Object whose true position cues the gimbal (a radar track); 0 = no cue, the gimbal holds.
     std::uint32_t cue_object_id = 0;
 
+    /// A fixed mount's pose (on a moving platform: at no particular time; use the timed one).
     Eigen::Isometry3d world_from_sensor() const;
+    bool moves() const { return platform.has_value(); }
+    /// The sensor's pose at `time_s`: the platform's, its sway, then the mount's orientation; a
+    /// fixed mount's pose, the same at every time.
+    Eigen::Isometry3d world_from_sensor(double time_s) const;
 };
 
 struct RenderSettings {
