@@ -120,6 +120,37 @@ Points remove_incoherent(const Points& points, double radius_m, double tolerance
     return out;
 }
 
+Points without_volume_echoes(const Points& points, double pitch_rad, double tolerance_m, double window_m) {
+    if (points.empty()) return points;
+    // Directions as points on the unit sphere: beams a pitch apart lie a pitch apart there.
+    pcl::PointCloud<pcl::PointXYZ>::Ptr directions(new pcl::PointCloud<pcl::PointXYZ>);
+    directions->reserve(points.size());
+    std::vector<double> ranges(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        ranges[i] = points[i].cast<double>().norm();
+        const Eigen::Vector3f u = points[i] / static_cast<float>(ranges[i]);
+        directions->push_back(pcl::PointXYZ(u.x(), u.y(), u.z()));
+    }
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+    tree.setInputCloud(directions);
+    std::vector<int> neighbours;
+    std::vector<float> squared;
+    Points out;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        tree.radiusSearch((*directions)[i], 1.5 * pitch_rad, neighbours, squared);
+        bool echo_train = false, beside = false;
+        for (std::size_t k = 0; k < neighbours.size(); ++k) {
+            const auto j = static_cast<std::size_t>(neighbours[k]);
+            if (j == i) continue;
+            const double dr = std::abs(ranges[j] - ranges[i]);
+            if (std::sqrt(squared[k]) < 0.5 * pitch_rad) echo_train = echo_train || dr <= window_m;
+            else beside = beside || dr <= tolerance_m;
+        }
+        if (!echo_train || beside) out.push_back(points[i]);
+    }
+    return out;
+}
+
 Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction) {
     std::vector<std::pair<double, std::size_t>> elevation;
     for (std::size_t i = 0; i < cluster.points.size(); ++i) {

@@ -135,8 +135,10 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
                      : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, cal_range, config_.bias_m);
 
     // Clutter: a volume's backscatter has no neighbours that agree with it in range.
+    const double fine_pitch_rad = std::min(sensor_.field_az_deg / sensor_.beams_az, sensor_.field_el_deg / sensor_.beams_el) * kDeg;
     const Points kept = config_.range_coherence_m > 0.0
-                            ? remove_incoherent(foreground, d.radius_m, config_.range_coherence_m, config_.min_neighbours)
+                            ? remove_incoherent(without_volume_echoes(foreground, fine_pitch_rad, config_.range_coherence_m, config_.volume_echo_window_m), d.radius_m,
+                                                config_.range_coherence_m, config_.min_neighbours)
                             : remove_outliers(foreground, d.radius_m, config_.min_neighbours);
     const double divergence_rad = sensor_.divergence_mrad * kMrad;
     const auto min_points = static_cast<std::size_t>(config_.min_neighbours) + 1;

@@ -195,3 +195,75 @@ TEST_CASE("clutter: a clump inside a cloud's backscatter does not stand clear, a
     for (int column = -41; column < -36; ++column) sparse.push_back(along(640.2, column * kPitchAz, -kPitchEl));
     CHECK(standing_clear(clusters, sparse, radius, 1.0).size() == 2);
 }
+
+namespace {
+
+/// A volume's returns about a drone at `range`: two on every beam of lines -3..4 and columns
+/// -30..37 (the drone's own beams left out), 2 m apart along the beam, the nearer 0.3 m beyond the
+/// drone on even columns and 0.8 m on odd ones. The next but one beam of a line, and every line,
+/// agree in range, so each return has many neighbours within the clustering radius that agree
+/// with it; the next beam never does.
+Points volume_about(double range, int drone_beams) {
+    Points p;
+    for (int row = -3; row <= 4; ++row)
+        for (int column = -30; column <= 37; ++column) {
+            if ((row == 0 || row == 1) && column >= 0 && column < drone_beams) continue;
+            for (double behind : {0.3, 2.3}) p.push_back(along(range + behind + 0.5 * (column & 1), column * kPitchAz, row * kPitchEl));
+        }
+    return p;
+}
+
+/// `points` with a second return on each beam, `behind_m` farther.
+Points with_echo_train(const Points& points, double behind_m) {
+    Points out = points;
+    for (const auto& p : points) out.push_back(p * static_cast<float>((p.norm() + behind_m) / p.norm()));
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("clutter: a return whose beam holds another near it and whose neighbouring beams hold none at its range is dropped", "[detect][clutter]") {
+    const Points target = drone(650.0, 0.0, 0.0);
+    // Neighbouring beams of a line 0.12 m apart in range, over a tolerance of 0.1 m, each beam
+    // with a second return 2 m beyond (a line climbing 0.12 m a beam too): all dropped.
+    const Points steep = backscatter(652.0, 20 * kPitchAz, 0.0, 8, 0.12);
+    CHECK(without_volume_echoes(with_echo_train(steep, 2.0), kPitchAz, 0.1, 5.0).empty());
+    // The second returns 6 m beyond, outside the 5 m window: every return kept, and so are
+    // returns alone on their beams.
+    CHECK(without_volume_echoes(with_echo_train(steep, 6.0), kPitchAz, 0.1, 5.0).size() == 16);
+    CHECK(without_volume_echoes(steep, kPitchAz, 0.1, 5.0) == steep);
+    // 0.08 m apart in range: every return has a neighbour at its range, all kept.
+    const Points shallow = with_echo_train(backscatter(652.0, 20 * kPitchAz, 0.0, 8, 0.08), 2.0);
+    CHECK(without_volume_echoes(shallow, kPitchAz, 0.1, 5.0) == shallow);
+    // The drone's returns all share their range with the next beam; the volume's share theirs
+    // only with the next but one (2 pitches away) and with other lines (a line pitch, 7.5 azimuth
+    // pitches, away), which agreeing-neighbour outlier removal counts.
+    const Points frame = joined(target, volume_about(650.0, 8));
+    const double radius = vrbnn_radius_m(180.0, kPaperSensor, 650.0, 0.01);
+    CHECK(remove_incoherent(frame, radius, 0.1, 3).size() == frame.size());
+    CHECK(without_volume_echoes(frame, kPitchAz, 0.1, 5.0) == target);
+    // Two beams each with an echo train: a pitch apart at one range, both kept; two pitches apart,
+    // neither.
+    const Points apart1 = with_echo_train({along(650.0, 0.0, 0.0), along(650.05, kPitchAz, 0.0)}, 2.0);
+    CHECK(without_volume_echoes(apart1, kPitchAz, 0.1, 5.0) == apart1);
+    CHECK(without_volume_echoes(with_echo_train({along(650.0, 0.0, 0.0), along(650.0, 2 * kPitchAz, 0.0)}, 2.0), kPitchAz, 0.1, 5.0).empty());
+}
+
+TEST_CASE("clutter: the cued tracker keeps a drone inside a volume whose returns agree in range from line to line", "[detect][clutter]") {
+    DetectorConfig config;
+    config.lambda = 180.0;
+    TargetTracker tracker(config, kPaperSensor, {});
+    for (int k = 0; k < 12; ++k) {
+        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
+        const Points target = drone(range, 0.0, 0.0);
+        // Frames 4-7: the volume about the drone chains to it (0.30 m from its returns, under the
+        // clustering radius), and its slab 0.3 m beyond it is the cluster's core: too wide to be
+        // the target, and the drone would be lost.
+        const Points frame = k >= 4 && k < 8 ? joined(target, volume_about(range, 8)) : target;
+        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
+        INFO("frame " << k);
+        REQUIRE(d.found);
+        CHECK_FALSE(d.predicted);
+        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
+    }
+}

@@ -49,6 +49,19 @@ Points remove_outliers(const Points& points, double radius_m, int min_neighbours
 /// before clustering could chain them to it.
 Points remove_incoherent(const Points& points, double radius_m, double tolerance_m, int min_neighbours);
 
+/// Volume backscatter dropped beam by beam. A return is taken for a cloud's or fog's when its own
+/// beam (directions within half `pitch_rad`) holds another return within `window_m` of its range,
+/// the echo train of a volume, and no neighbouring beam of the finer scan axis (directions within
+/// 1.5 `pitch_rad`: the next beam, not the next but one) holds a return within `tolerance_m` of
+/// its range. A surface or a small target is seen by a run of neighbouring beams that all report
+/// its range (the bundled drone's to 3 cm from beam to beam), while a volume's returns come from
+/// any depth along each beam, independently of the next beam's: in dataset 3's cloud 1 in 5 has
+/// such a neighbour, where outlier removal asking 3 neighbours within the clustering radius to
+/// agree in range kept 7 in 10 of them over Autzen. A return alone on its beam is never dropped:
+/// a far drone's returns miss some beams of its lines (every other one at 1.9 km), and one of
+/// them without a neighbouring return would be lost with half its line.
+Points without_volume_echoes(const Points& points, double pitch_rad, double tolerance_m, double window_m);
+
 /// A cluster without the scan lines that hold few of its returns: a small target is seen by every
 /// beam of a line whose footprint reaches it (about a footprint's width over the azimuth pitch:
 /// 16 beams for the paper's raster at any range), while returns of a cloud that happen to agree

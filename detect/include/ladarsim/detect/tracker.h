@@ -49,6 +49,11 @@ struct DetectorConfig {
     /// backscatter spread over their whole extent in range.
     double range_coherence_m = 0.1;
     double coherent_fraction = 0.9;
+    /// The cued target's tracker drops a return whose beam holds another within this distance
+    /// of it and whose neighbouring beams hold none at its range (without_volume_echoes), while
+    /// range_coherence_m > 0. Returns of dataset 3's cloud lie a median 1.3-1.5 m apart along a
+    /// beam (10 % under 0.4 m, 10 % over 20 m).
+    double volume_echo_window_m = 5.0;
     /// The cued target's tracker drops the scan lines of a core holding fewer than this fraction
     /// of its fullest line's returns (without_sparse_lines), while range_coherence_m > 0.
     double sparse_line_fraction = 0.25;
