@@ -89,6 +89,9 @@ private:
     /// sensor_from_beam does, without its four sines and cosines per beam).
     std::vector<std::array<Eigen::Quaterniond, 2>> offset_rotations_;
     Eigen::Matrix3d world_from_sensor_rotation_;  ///< the mount's, found once
+    /// Per scene object that is animated, the model-frame box over its whole animation, which its
+    /// ground truth is drawn from (every return falls inside it); empty for the others (the mesh's).
+    std::vector<Eigen::AlignedBox3d> truth_boxes_model_;
     std::vector<std::uint8_t> extra_mask_;          ///< by raster cell (row, column): bit k = extra probe k
     std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
     double extra_irradiance_ = 0.0;
