@@ -70,8 +70,8 @@ TEST_CASE("a plate turning 90 deg/s by a glTF rotation channel shows in each fra
             const double yaw = yaw_at(r.time_s) * kDeg;
             const Eigen::Vector3d p = r.position_sensor.cast<double>() - Eigen::Vector3d(distance_m, 0, 0);
             const Eigen::Vector3d in_plate = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()) * p;
-            worst_offset_m = std::max(worst_offset_m, std::abs(in_plate.x()));
             if (std::abs(in_plate.y()) > 0.5 * side_m - 0.05 || std::abs(in_plate.z()) > 0.5 * side_m - 0.05) continue;
+            worst_offset_m = std::max(worst_offset_m, std::abs(in_plate.x()));
             points.push_back(r.position_sensor.cast<double>());
             yaw_sum += yaw_at(r.time_s);
         }
@@ -90,9 +90,10 @@ TEST_CASE("a plate turning 90 deg/s by a glTF rotation channel shows in each fra
         CHECK(std::abs(fitted_deg - expected_deg) < 1.0);
         worst_angle_deg = std::max(worst_angle_deg, std::abs(fitted_deg - expected_deg));
     }
-    // Every return lies on the plate where it was at that return's own time (all returns, edges too).
+    // Each of those returns lies on the plate where it was at that return's own time: the plate
+    // turns 1.8 deg in a frame, which at 0.25 m from its axis is 8 mm.
     INFO("largest angle error " << worst_angle_deg << " deg, largest distance off the plate at its time " << worst_offset_m << " m");
-    CHECK(worst_offset_m < 0.03);
+    CHECK(worst_offset_m < 0.002);
     WARN("turning plate: largest fitted-angle error " << worst_angle_deg << " deg; largest return offset from the plate at its time "
                                                       << worst_offset_m << " m");
 }
