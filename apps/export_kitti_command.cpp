@@ -37,9 +37,7 @@ struct ExportKittiCommand {
     }
 
     int run() {
-        KittiExportProgress progress;
-        progress.intensity_scanned = progress_lines("intensity scan, frame");
-        progress.frame_written = progress_lines("export, frame");
+        const ExportProgress progress{progress_lines("intensity scan, frame"), progress_lines("export, frame")};
         // A campaign's sequences go into one export, its splits into ImageSets.
         std::vector<KittiSource> sources;
         if (campaign::is_campaign(dataset_dir))

@@ -18,8 +18,8 @@ struct ImportOusterCommand {
 
     CLI::App* add(CLI::App& app) {
         auto* import_cmd = app.add_subcommand(
-            "import-ouster", "Decode an Ouster pcap capture (with the unit's metadata JSON) into a dataset of recorded frames");
-        import_cmd->add_option("pcap", pcap_file, "libpcap capture of the unit's lidar packets (UDP)")->required();
+            "import-ouster", "Decode an Ouster capture (pcap or pcapng, with the unit's metadata JSON) into a dataset of recorded frames");
+        import_cmd->add_option("pcap", pcap_file, "capture of the unit's lidar packets (UDP): libpcap or pcapng, Wireshark's default")->required();
         import_cmd->add_option("--metadata", metadata_file, "The unit's metadata (calibration) JSON")->required();
         import_cmd->add_option("--out", out_dir, "Output dataset directory")->required();
         return import_cmd;

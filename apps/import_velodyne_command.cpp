@@ -15,8 +15,8 @@ struct ImportVelodyneCommand {
     std::string pcap_file, out_dir;
 
     CLI::App* add(CLI::App& app) {
-        auto* import_cmd = app.add_subcommand("import-velodyne", "Decode a VLP-16 pcap capture into a dataset of recorded frames");
-        import_cmd->add_option("pcap", pcap_file, "libpcap capture of VLP-16 packets")->required();
+        auto* import_cmd = app.add_subcommand("import-velodyne", "Decode a VLP-16 capture (pcap or pcapng) into a dataset of recorded frames");
+        import_cmd->add_option("pcap", pcap_file, "capture of VLP-16 packets: libpcap or pcapng, Wireshark's default")->required();
         import_cmd->add_option("--out", out_dir, "Output dataset directory")->required();
         return import_cmd;
     }

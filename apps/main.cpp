@@ -5,10 +5,9 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "ladarsim/core/log_lines.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "exit_codes.h"
 #include "mpi_team.h"
@@ -33,6 +32,7 @@ int main(int argc, char** argv) {
     apps::add_import_velodyne_command(app, exit_code);
     apps::add_import_ouster_command(app, exit_code);
     apps::add_export_kitti_command(app, exit_code);
+    apps::add_export_las_command(app, exit_code);
     apps::add_make_assets_command(app, exit_code);
     apps::add_train_classifier_command(app, exit_code);
     apps::add_preview_command(app, exit_code);
@@ -52,8 +52,7 @@ int main(int argc, char** argv) {
     // CLI11 says "A subcommand is required" for a misspelt one too: name it, and list the valid ones.
     if (const int code = apps::check_subcommand(app, argc, argv); code != 0) return code;
 
-    spdlog::set_default_logger(spdlog::stderr_color_mt("ladarsim"));
-    spdlog::set_pattern("%^%l%$: %v");
+    use_ladarsim_log_lines();
     // The parsed subcommand runs inside parse(), as its callback.
     return apps::exit_code_of(
         [&] {

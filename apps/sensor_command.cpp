@@ -33,8 +33,8 @@ struct SensorCommand {
         auto* ouster = sensor->add_subcommand(
             "from-ouster", "Write the sensor file of an Ouster unit from its metadata (calibration) JSON alone");
         ouster->add_option("metadata", metadata_file, "The unit's metadata file (beam angles, lidar mode, ...)")->required();
-        ouster->add_option("--out", out_file, "Sensor file to write (default: print it); an existing one only with --force");
-        ouster->add_flag("--force", force, "Replace the --out file");
+        ouster->add_option("--out", out_file, "Sensor file to write (default: print it); one ladarsim did not write only with --force");
+        ouster->add_flag("--force", force, "Replace the --out file even if ladarsim did not write it");
         return sensor;
     }
 
@@ -51,6 +51,7 @@ struct SensorCommand {
             std::cout << sensor.dump(2) << "\n";
         } else {
             write_json(out_file, sensor);
+            record_owned(out_file);
             std::printf("wrote %s (sensor \"%s\"; name it in a scenario as \"sensor\": {\"file\": ...})\n", out_file.c_str(),
                         sensor.at("name").get<std::string>().c_str());
         }

@@ -70,6 +70,12 @@ sensor_model::Scenario with_footprint(sensor_model::Scenario s, int samples, dou
     return s;
 }
 
+sensor_model::Scenario with_map_reference(sensor_model::Scenario s, int samples, int lines) {
+    s = with_footprint(std::move(s), samples, 0.0);
+    s.render.footprint_map_lines = lines;
+    return s;
+}
+
 double thread_cpu_seconds() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);

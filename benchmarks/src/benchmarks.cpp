@@ -179,9 +179,9 @@ json recorded_map(const BenchOptions& options) {
     scenario.render.noise = false;
     const std::uint64_t frames = static_cast<std::uint64_t>(scenario.render.frames);
     const std::vector<std::uint64_t> indices = every(frames / (options.quick ? 2 : 6), frames);
-    options.progress("recorded map: converged reference (" + std::to_string(kReferenceSamples) + " sub-rays per beam, " +
+    options.progress("recorded map: converged reference (a scanline of " + std::to_string(kMapReferenceLines) + " lines per beam, " +
                      std::to_string(indices.size()) + " frames)");
-    const Rendering reference = render_frames(with_footprint(scenario, kReferenceSamples, 0.0), indices);
+    const Rendering reference = render_frames(with_map_reference(scenario, kReferenceSamples, kMapReferenceLines), indices);
     json settings = json::array();
     for (const Setting& s : kSweep) {
         options.progress("recorded map: " + s.label());
@@ -200,7 +200,7 @@ json recorded_map(const BenchOptions& options) {
     }
     return {{"scenario", options.map_scenario.string()},
             {"frames", indices.size()},
-            {"reference_samples", kReferenceSamples},
+            {"reference_lines", kMapReferenceLines},
             {"settings", settings}};
 }
 

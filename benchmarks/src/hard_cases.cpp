@@ -37,7 +37,13 @@ struct HardCase {
     std::function<bool(const Return&)> judged;          ///< empty: every beam is judged
     /// The same scene at an easier pointing, timed for comparison (the horizon against -2 deg).
     std::optional<Scenario> easier;
+    /// Over a recorded map: the reference's scanline lines (its convergence shown against twice
+    /// as many); 0: kReferenceSamples sub-rays.
+    int reference_lines = 0;
 };
+
+/// A first return this far from the reference's is another surface's, not the same one's.
+constexpr double kOffRange_m = 0.15;
 
 /// Detection threshold of a beam's unstretched pulse, in primary photo-electrons.
 double threshold_pe(const Scenario& s) {
@@ -55,6 +61,8 @@ struct BeamErrors {
     double energy_error_pct = 0.0;  ///< sum over beams of |energy - reference| over the reference's sum
     double max_fraction_error = 0.0;///< largest |energy - reference| / full echo (extended targets)
     double range_error_mm = 0.0;    ///< mean |first range - reference| over beams both report
+    double beams_off_pct = 0.0;     ///< of beams both report, those whose first ranges differ by > kOffRange_m
+    double total_energy_error_pct = 0.0;  ///< summed energy against the reference's
     /// Their median: a few beams whose first return is another surface's (one reports a weak near
     /// return the other does not) dominate the mean at grazing incidence.
     double median_range_error_mm = 0.0;
@@ -86,10 +94,14 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
     const auto got = tally(r), want = tally(reference);
     const double threshold = threshold_pe(c.scenario);
     BeamErrors e;
-    double abs_sum = 0.0, ref_sum = 0.0, range_sum = 0.0;
+    double abs_sum = 0.0, ref_sum = 0.0, range_sum = 0.0, got_sum = 0.0;
+    int off = 0;
     std::vector<double> range_errors;
     int both = 0;
-    for (const auto& [key, b] : got) e.returns += static_cast<std::uint64_t>(b.returns);
+    for (const auto& [key, b] : got) {
+        e.returns += static_cast<std::uint64_t>(b.returns);
+        got_sum += b.energy_pe;
+    }
     for (const auto& [key, w] : want) {
         e.reference_returns += static_cast<std::uint64_t>(w.returns);
         ref_sum += w.energy_pe;
@@ -103,6 +115,7 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
         }
         range_sum += std::abs(it->second.first_range_m - w.first_range_m);
         range_errors.push_back(std::abs(it->second.first_range_m - w.first_range_m));
+        off += range_errors.back() > kOffRange_m;
         ++both;
     }
     for (const auto& [key, b] : got) {
@@ -113,6 +126,8 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
     }
     e.energy_error_pct = ref_sum > 0.0 ? 100.0 * abs_sum / ref_sum : 0.0;
     e.range_error_mm = both ? 1e3 * range_sum / both : 0.0;
+    e.beams_off_pct = both ? 100.0 * off / both : 0.0;
+    e.total_energy_error_pct = ref_sum > 0.0 ? 100.0 * (got_sum - ref_sum) / ref_sum : 0.0;
     if (!range_errors.empty()) {
         const auto middle = range_errors.begin() + static_cast<std::ptrdiff_t>(range_errors.size() / 2);
         std::nth_element(range_errors.begin(), middle, range_errors.end());
@@ -210,6 +225,7 @@ std::optional<HardCase> recorded_map(const BenchOptions& options) {
     const std::uint64_t count = options.quick ? 2 : 6;
     for (std::uint64_t k = 0; k < count; ++k) c.frames.push_back(k * frames / count);
     c.object_id = scene::kBackgroundObjectId;
+    c.reference_lines = kMapReferenceLines;
     return c;
 }
 
@@ -298,7 +314,25 @@ struct Setting {
 
 json run_case(const HardCase& c, const BenchOptions& options, const std::vector<Setting>& settings, double default_tolerance) {
     options.progress("hard case: " + c.name + ", reference");
-    const Rendering reference = render_frames(with_footprint(c.scenario, kReferenceSamples, 0.0), c.frames);
+    auto reference_of = [&](int lines) {
+        return lines ? with_map_reference(c.scenario, kReferenceSamples, lines) : with_footprint(c.scenario, kReferenceSamples, 0.0);
+    };
+    const Rendering reference = render_frames(reference_of(c.reference_lines), c.frames);
+    json about_reference = {{"method", std::to_string(kReferenceSamples) + " fixed sub-rays a beam"}};
+    if (c.reference_lines) {
+        options.progress("hard case: " + c.name + ", reference at twice its lines");
+        const BeamErrors self = compare_beams(c, render_frames(reference_of(2 * c.reference_lines), c.frames), reference);
+        about_reference = {{"method", "scanline over the map's discs, " + std::to_string(c.reference_lines) + " lines a beam, " +
+                                          std::to_string(kReferenceSamples / c.reference_lines) + " rays a line for other objects"},
+                           {"against", std::to_string(2 * c.reference_lines) + " lines"},
+                           {"self_difference_mean_mm", self.range_error_mm},
+                           {"self_difference_median_mm", self.median_range_error_mm},
+                           {"self_difference_beams_off_pct", self.beams_off_pct},
+                           {"self_difference_count_pct", self.reference_returns ? 100.0 * (double(self.returns) - double(self.reference_returns)) /
+                                                                                      double(self.reference_returns)
+                                                                                : 0.0},
+                           {"self_difference_energy_pct", self.total_energy_error_pct}};
+    }
     json rows = json::array();
     for (const Setting& s : settings) {
         Scenario scenario = with_footprint(c.scenario, s.samples, s.tolerance);
@@ -316,9 +350,11 @@ json run_case(const HardCase& c, const BenchOptions& options, const std::vector<
                                                             : 0.0},
                     {"missing_beams", e.missing_beams},
                     {"extra_beams", e.extra_beams},
-                    {"energy_error_pct", e.energy_error_pct},
-                    {"range_error_mm", e.range_error_mm},
-                    {"median_range_error_mm", e.median_range_error_mm}};
+                    {"energy_error_pct", e.total_energy_error_pct},
+                    {"beam_energy_error_pct", e.energy_error_pct},
+                    {"mean_first_return_error_mm", e.range_error_mm},
+                    {"median_first_return_error_mm", e.median_range_error_mm},
+                    {"beams_off_pct", e.beams_off_pct}};
         if (c.full_echo_pe) row["max_energy_fraction_error"] = e.max_fraction_error;
         if (s.samples == 0 && s.tolerance == default_tolerance) row["default"] = true;
         if (s.another_seed) row["reference_with_another_seed"] = true;
@@ -329,7 +365,7 @@ json run_case(const HardCase& c, const BenchOptions& options, const std::vector<
         }
         rows.push_back(row);
     }
-    return {{"case", c.name}, {"frames", c.frames.size()}, {"reference_samples", kReferenceSamples}, {"settings", rows}};
+    return {{"case", c.name}, {"frames", c.frames.size()}, {"reference", about_reference}, {"settings", rows}};
 }
 
 }  // namespace

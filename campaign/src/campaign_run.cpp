@@ -2,13 +2,18 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "ladarsim/campaign/campaign_index.h"
 #include "ladarsim/campaign/sequence_sampler.h"
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/core/json_file.h"
+#include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/sensor_model/render/render_dataset.h"
 #include "ladarsim/sensor_model/render/scenario.h"
 
@@ -34,19 +39,39 @@ void write_shared_json(const fs::path& path, const nlohmann::json& value) {
     fs::rename(mine, path);
 }
 
+/// The entries a campaign writes at the top of its directory (the card's by scripts/plot_campaign.py).
+const std::vector<std::string>& campaign_entries() {
+    static const std::vector<std::string> entries{"campaign.json", "card-balance.png", "card-targets.png", "card-visibility.png",
+                                                  "card.md",       "sequences",        "spec.json"};
+    return entries;
+}
+
 /// Whether `dir` holds nothing but what another run starting this campaign at the same moment
-/// writes first: sequences/ (empty) and its record under a temporary name.
+/// writes first: its owned list, sequences/ (empty) and its record, those two under temporary names.
 bool only_a_campaign_starting(const fs::path& dir) {
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir)) {
         const std::string entry = e.path().filename().string();
-        const bool starting = (entry == "sequences" && fs::is_empty(e.path(), ec)) || entry.rfind("spec.json.", 0) == 0;
+        const bool starting = (entry == "sequences" && fs::is_empty(e.path(), ec)) || entry.rfind("spec.json.", 0) == 0 ||
+                              entry.rfind(kOwnedList, 0) == 0;
         if (!starting) return false;
     }
     return true;
 }
 
-/// The campaign directory, made ready: absent or empty (created), or a campaign of this spec.
+/// Whether `record_file`, which ladarsim's owned list does not name, is this run's record all the
+/// same: a campaign begun before campaigns had the list.
+bool unlisted_record_matches(const fs::path& record_file, const nlohmann::json& record) {
+    try {
+        return read_json(record_file) == record;
+    } catch (const InputError&) {
+        return false;  // not even JSON: the user's
+    }
+}
+
+/// The campaign directory, made ready: absent or empty (created), or a campaign of this spec
+/// (its owned list names spec.json, or, from before the list, its spec.json is this run's record).
+/// Its entries are listed as ladarsim's, all at once, before any is written.
 fs::path prepared_campaign_dir(const CampaignSpec& spec, const fs::path& requested) {
     fs::path out = fs::absolute(requested).lexically_normal();
     if (!out.has_filename()) out = out.parent_path();
@@ -55,18 +80,26 @@ fs::path prepared_campaign_dir(const CampaignSpec& spec, const fs::path& request
     if (fs::exists(out, ec) && !fs::is_directory(out, ec)) throw InputError(name, "--out", "is not a directory");
     const fs::path record_file = out / "spec.json";
     const nlohmann::json record = spec_record(spec);
+    const auto owned = owned_entries(out);
+    const bool listed = owned && std::find(owned->begin(), owned->end(), "spec.json") != owned->end();
     if (fs::exists(record_file, ec)) {
-        if (read_json(record_file) != record)
+        if (!listed && !unlisted_record_matches(record_file, record))
+            throw InputError(name, "--out",
+                             "is neither empty nor a campaign (no " + std::string(kOwnedList) +
+                                 " list naming its spec.json): refusing to write into it");
+        if (listed && read_json(record_file) != record)
             throw InputError(name, "--out",
                              "holds a campaign of another spec, seed or size (" + record_file.string() +
                                  "); give another directory");
-    } else {
-        if (fs::exists(out, ec) && !only_a_campaign_starting(out))
-            throw InputError(name, "--out", "is neither empty nor a campaign (no spec.json): refusing to write into it");
-        fs::create_directories(out / "sequences");
-        write_shared_json(record_file, record);
+    } else if (fs::exists(out, ec) && !only_a_campaign_starting(out)) {
+        throw InputError(name, "--out",
+                         "is neither empty nor a campaign (no " + std::string(kOwnedList) +
+                             " list naming its spec.json): refusing to write into it");
     }
+    fs::create_directories(out);
+    record_owned(out, campaign_entries());
     fs::create_directories(out / "sequences");
+    if (!fs::exists(record_file, ec)) write_shared_json(record_file, record);
     return out;
 }
 
@@ -116,7 +149,9 @@ CampaignSummary run_campaign(const CampaignSpec& spec, const CampaignOptions& op
         sensor_model::DatasetOptions render;
         render.out_dir = out / sequence_directory(i);
         render.threads = options.threads;
-        render.resume = true;
+        // A sequence an interrupted run left goes on where it stopped; a new one starts (asking
+        // it to resume warned, for every new sequence, that there was nothing to resume).
+        render.resume = fs::exists(staging_dir(render.out_dir));
         render.stop = options.stop;
         progress.sequence = i;
         render.progress = [&](int done, int) {

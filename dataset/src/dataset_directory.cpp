@@ -11,7 +11,6 @@
 #include <fstream>
 #include <regex>
 
-#include "ladarsim/core/atomic_file.h"
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/frame_io.h"
 
@@ -45,9 +44,24 @@ void write_owned_entries(const std::filesystem::path& dir, std::vector<std::stri
     names.erase(std::unique(names.begin(), names.end()), names.end());
     std::string text = "# ladarsim wrote these entries of this directory: a new run replaces or deletes these and nothing else\n";
     for (const auto& n : names) text += n + "\n";
-    AtomicFile file(dir / kOwnedList);
-    file.stream() << text;
-    file.commit();
+    // Under a temporary name of this process's own (AtomicFile's is shared): the shards of a
+    // campaign, on one host or several, may list the same entries at the same moment.
+    char host[256] = "";
+    ::gethostname(host, sizeof host - 1);
+    const std::filesystem::path list = dir / kOwnedList;
+    const std::filesystem::path temporary = list.string() + "." + host + "." + std::to_string(::getpid()) + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.close();
+        if (!out) {
+            const std::string reason = std::strerror(errno);
+            std::error_code ignored;
+            std::filesystem::remove(temporary, ignored);
+            throw std::runtime_error(list.string() + ": cannot write: " + reason);
+        }
+    }
+    std::filesystem::rename(temporary, list);
 }
 
 /// The user's entries inside ladarsim's own directories of `out` (those on its owned list), as
@@ -75,7 +89,8 @@ std::vector<std::string> foreign_entries(const std::filesystem::path& out, const
 }  // namespace
 
 bool is_dataset_entry(const std::string& name) {
-    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd";
+    return name == "frames" || name == "manifest.json" || name == "ground_truth.json" || name == "background.pcd" ||
+           name == "poses.txt" || name == "waveforms";
 }
 
 std::optional<std::vector<std::string>> owned_entries(const std::filesystem::path& dir) {
@@ -101,11 +116,14 @@ void check_replaceable(const std::filesystem::path& file, const std::string& fie
 }
 
 void record_owned(const std::filesystem::path& file) {
-    const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
-    auto owned = owned_entries(dir);
-    if (!owned || contains(*owned, file.filename().string())) return;
-    owned->push_back(file.filename().string());
-    write_owned_entries(dir, *owned);
+    record_owned(file.parent_path().empty() ? "." : file.parent_path(), {file.filename().string()});
+}
+
+void record_owned(const std::filesystem::path& dir, const std::vector<std::string>& names) {
+    auto owned = owned_entries(dir).value_or(std::vector<std::string>{});
+    if (std::all_of(names.begin(), names.end(), [&](const std::string& n) { return contains(owned, n); })) return;
+    owned.insert(owned.end(), names.begin(), names.end());
+    write_owned_entries(dir, owned);
 }
 
 bool is_mount_point(const std::filesystem::path& dir) {
@@ -117,6 +135,8 @@ bool is_mount_point(const std::filesystem::path& dir) {
 const OutputLayout& dataset_layout() {
     static const OutputLayout layout{"dataset", is_dataset_entry, [](const std::string& relative) {
                                          const auto path = std::filesystem::path(relative);
+                                         static const std::regex waveform_file(R"(\d{6,}\.h5(\.tmp)?)");
+                                         if (path.parent_path() == "waveforms") return std::regex_match(path.filename().string(), waveform_file);
                                          return path.parent_path() == "frames" && is_frame_file(path.filename().string());
                                      }};
     return layout;
@@ -147,6 +167,16 @@ std::filesystem::path checked_output_dir(const std::filesystem::path& requested,
         throw InputError(out.string(), "--out",
                          "is a non-empty directory without the " + std::string(kOwnedList) + " list ladarsim writes in every " +
                              layout.what + "; refusing to replace it");
+    }
+    // A list naming only files written one by one into a directory of the user's (eval --json,
+    // sensor from-ouster --out) or another kind of output (a campaign) makes it no such output.
+    if (std::none_of(owned->begin(), owned->end(), layout.is_own_entry)) {
+        const bool only_the_list = std::all_of(std::filesystem::directory_iterator(out), std::filesystem::directory_iterator(),
+                                               [](const auto& e) { return e.path().filename() == kOwnedList; });
+        if (!only_the_list)
+            throw InputError(out.string(), "--out",
+                             "holds no " + layout.what + " (ladarsim wrote only " + joined(*owned) + " there); refusing to write a " +
+                                 layout.what + " into it");
     }
     std::vector<std::string> clashing;
     for (const auto& e : std::filesystem::directory_iterator(out)) {

@@ -11,6 +11,7 @@
 #include "ladarsim/dataset/frame_io.h"
 #include "ladarsim/dataset/frame_pcd.h"
 #include "ladarsim/dataset/ground_truth_file.h"
+#include "ladarsim/dataset/intensity_scale.h"
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/core/json_file.h"
 #include "ladarsim/dataset/manifest.h"
@@ -108,15 +109,6 @@ std::vector<Label> frame_labels(const std::vector<GroundTruthObject>& truth, con
     return labels;
 }
 
-float largest_intensity(const std::vector<std::filesystem::path>& pcds, const KittiExportProgress& progress) {
-    float largest = 0.0f;
-    for (std::size_t i = 0; i < pcds.size(); ++i) {
-        for (const Return& r : read_frame_pcd(pcds[i])) largest = std::max(largest, r.intensity);
-        if (progress.intensity_scanned) progress.intensity_scanned(static_cast<int>(i + 1), static_cast<int>(pcds.size()));
-    }
-    return largest;
-}
-
 /// ladarsim_export.json: `origin` (where the frames came from) and what the export holds.
 nlohmann::json export_record(nlohmann::json origin, float intensity_scale, const KittiExportOptions& options,
                              nlohmann::json frames) {
@@ -173,12 +165,12 @@ SourceFrames read_source(const std::filesystem::path& dataset_dir) {
 /// no ImageSets) the split each source's frames are listed in; labels as `options` say.
 KittiExportSummary export_frames(const std::vector<SourceFrames>& sources, const std::vector<std::string>& split_of_source,
                                  nlohmann::json origin, const std::filesystem::path& out_dir,
-                                 const KittiExportOptions& options, const KittiExportProgress& progress) {
+                                 const KittiExportOptions& options, const ExportProgress& progress) {
     KittiExportSummary summary;
     summary.out = checked_output_dir(out_dir, kitti_layout());
     std::vector<std::filesystem::path> pcds;
     for (const auto& source : sources) pcds.insert(pcds.end(), source.pcds.begin(), source.pcds.end());
-    const float largest = largest_intensity(pcds, progress);
+    const float largest = largest_intensity(pcds, progress.intensity_scanned);
     summary.intensity_scale = largest > 0.0f ? largest : 1.0f;
 
     const StagingDir staging_lock(summary.out);
@@ -332,7 +324,7 @@ const OutputLayout& kitti_layout() {
 }
 
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                                const KittiExportOptions& options, const KittiExportProgress& progress) {
+                                const KittiExportOptions& options, const ExportProgress& progress) {
     const SourceFrames source = read_source(dataset_dir);
     const nlohmann::json origin = {{"exported_from", source.dir.string()}, {"dataset_id", source.manifest.id}};
     return export_frames({source}, {}, origin, out_dir, options, progress);
@@ -340,7 +332,7 @@ KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const 
 
 KittiExportSummary export_kitti(const std::filesystem::path& origin, const std::vector<KittiSource>& sources,
                                 const std::filesystem::path& out_dir, const KittiExportOptions& options,
-                                const KittiExportProgress& progress) {
+                                const ExportProgress& progress) {
     std::vector<SourceFrames> frames;
     std::vector<std::string> splits;
     nlohmann::json datasets = nlohmann::json::array();

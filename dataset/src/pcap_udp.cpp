@@ -8,14 +8,12 @@
 #include <tuple>
 #include <vector>
 
+#include "capture_file.h"
 #include "ladarsim/core/input_error.h"
 
 namespace ladarsim {
 namespace {
 
-constexpr std::uint32_t kPcapMagic = 0xa1b2c3d4u;  // microsecond time stamps, as written on a little-endian host
-constexpr std::size_t kPcapHeader = 24, kRecordHeader = 16;
-constexpr std::uint32_t kLinkEthernet = 1;
 constexpr std::size_t kEthernetHeader = 14;
 constexpr std::uint16_t kEtherTypeIpv4 = 0x0800;
 constexpr unsigned kProtocolUdp = 17;
@@ -103,20 +101,8 @@ void for_each_udp_datagram(const std::filesystem::path& file, const std::functio
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(name, "(file)", "cannot open");
     const std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (b.size() < kPcapHeader || read_le<std::uint32_t>(b, 0) != kPcapMagic) throw InputError(name, "magic", "not a little-endian libpcap file");
-    if (read_le<std::uint32_t>(b, 20) != kLinkEthernet) throw InputError(name, "link type", "not Ethernet");
     Capture capture(name, visit);
-    std::size_t index = 0;
-    for (std::size_t off = kPcapHeader; off < b.size();) {
-        ++index;
-        if (off + kRecordHeader > b.size()) throw InputError(name, "record " + std::to_string(index), "capture ends inside a record header");
-        const double time_s = read_le<std::uint32_t>(b, off) + 1e-6 * read_le<std::uint32_t>(b, off + 4);
-        const std::size_t length = read_le<std::uint32_t>(b, off + 8), wire_length = read_le<std::uint32_t>(b, off + 12);
-        off += kRecordHeader;
-        if (length > b.size() - off) throw InputError(name, "record " + std::to_string(index), "capture ends inside a packet");
-        capture.record(index, time_s, std::span<const unsigned char>(b).subspan(off, length), wire_length > length);
-        off += length;
-    }
+    for_each_capture_record(b, name, [&](const CaptureRecord& r) { capture.record(r.index, r.time_s, r.frame, r.snapped); });
 }
 
 }  // namespace ladarsim

@@ -75,6 +75,16 @@ double default_lambda(const SensorGeometry& sensor) {
     return slope / vrbnn_radius_m(1.0, sensor, 1.0, 0.0);
 }
 
+double acquisition_range_m(const Points& points) {
+    if (points.empty()) return 0.0;
+    std::vector<float> ranges;
+    ranges.reserve(points.size());
+    for (const auto& p : points) ranges.push_back(p.norm());
+    const auto k = static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(ranges.size() - 1));
+    std::nth_element(ranges.begin(), ranges.begin() + k, ranges.end());
+    return ranges[static_cast<std::size_t>(k)];
+}
+
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours) {
     if (points.empty()) return points;
     const auto cloud = to_pcl(points);
@@ -87,6 +97,50 @@ Points remove_outliers(const Points& points, double radius_m, int min_neighbours
     Points out;
     out.reserve(kept.size());
     for (auto i : kept) out.push_back(points[static_cast<std::size_t>(i)]);
+    return out;
+}
+
+Points remove_incoherent(const Points& points, double radius_m, double tolerance_m, int min_neighbours) {
+    if (points.empty()) return points;
+    const auto cloud = to_pcl(points);
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+    tree.setInputCloud(cloud);
+    std::vector<double> ranges(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) ranges[i] = points[i].cast<double>().norm();
+    std::vector<int> neighbours;
+    std::vector<float> distances;
+    Points out;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        tree.radiusSearch((*cloud)[i], radius_m, neighbours, distances);
+        const auto agreeing = std::count_if(neighbours.begin(), neighbours.end(), [&](int j) {
+            return static_cast<std::size_t>(j) != i && std::abs(ranges[static_cast<std::size_t>(j)] - ranges[i]) <= tolerance_m;
+        });
+        if (agreeing >= min_neighbours) out.push_back(points[i]);
+    }
+    return out;
+}
+
+Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction) {
+    std::vector<std::pair<double, std::size_t>> elevation;
+    for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        const Eigen::Vector3d p = cluster.points[i].cast<double>();
+        elevation.emplace_back(std::atan2(p.z(), p.head<2>().norm()), i);
+    }
+    std::sort(elevation.begin(), elevation.end());
+    std::vector<std::size_t> line_of(cluster.points.size());
+    std::vector<std::size_t> line_size;
+    for (std::size_t k = 0; k < elevation.size(); ++k) {
+        if (k == 0 || elevation[k].first - elevation[k - 1].first > 0.5 * line_pitch_rad) line_size.push_back(0);
+        line_of[elevation[k].second] = line_size.size() - 1;
+        ++line_size.back();
+    }
+    if (line_size.size() < 2) return cluster;
+    const double fullest = static_cast<double>(*std::max_element(line_size.begin(), line_size.end()));
+    Cluster out;
+    for (std::size_t i = 0; i < cluster.points.size(); ++i)
+        if (static_cast<double>(line_size[line_of[i]]) >= min_fraction * fullest) out.points.push_back(cluster.points[i]);
+    if (out.points.size() == cluster.points.size()) return cluster;
+    out.box = bounding_box(out.points);
     return out;
 }
 
@@ -131,6 +185,19 @@ std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double
         cores.push_back(std::move(core));
     }
     return cores;
+}
+
+std::vector<Cluster> standing_clear(std::vector<Cluster> clusters, const Points& all, double margin_m, double max_ratio) {
+    std::erase_if(clusters, [&](const Cluster& c) {
+        const Eigen::Vector3f half = (0.5 * c.box.size).cast<float>() + Eigen::Vector3f::Constant(static_cast<float>(margin_m));
+        const Eigen::Vector3f centre = c.box.centre.cast<float>();
+        const auto inside = std::count_if(all.begin(), all.end(), [&](const Eigen::Vector3f& p) {
+            return ((p - centre).cwiseAbs().array() <= half.array()).all();
+        });
+        const auto others = static_cast<double>(inside) - static_cast<double>(c.points.size());
+        return others > max_ratio * static_cast<double>(c.points.size());
+    });
+    return clusters;
 }
 
 std::vector<Cluster> range_coherent(std::vector<Cluster> clusters, double tolerance_m, double min_fraction) {

@@ -40,18 +40,8 @@ MultiTargetTracker::~MultiTargetTracker() = default;
 
 std::vector<TrackedObject> MultiTargetTracker::process(double time_s, const Points& points) {
     const Points foreground = background_.subtract(points);
-    // One clustering radius for the frame, V-RBNN's at the range of the farthest targets (the 90th
-    // percentile of the foreground's ranges): a radius below a far target's beam pitch splits it,
-    // one above a near target's only joins what lies within it.
-    double range = 0.0;
-    if (!foreground.empty()) {
-        std::vector<float> ranges;
-        ranges.reserve(foreground.size());
-        for (const auto& p : foreground) ranges.push_back(p.norm());
-        const auto k = static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(ranges.size() - 1));
-        std::nth_element(ranges.begin(), ranges.begin() + k, ranges.end());
-        range = ranges[static_cast<std::size_t>(k)];
-    }
+    // One clustering radius for the frame, V-RBNN's at the range of the farthest targets.
+    const double range = acquisition_range_m(foreground);
     const double radius = config_.method == Method::rbnn
                               ? config_.rbnn_radius_m
                               : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, range, config_.bias_m);
@@ -60,7 +50,10 @@ std::vector<TrackedObject> MultiTargetTracker::process(double time_s, const Poin
         plausible_targets(rbnn(remove_outliers(foreground, radius, config_.min_neighbours), radius), config_.max_object_diagonal_m,
                           spread_rad, static_cast<std::size_t>(config_.min_neighbours) + 1);
     // Clutter: clumps of a cloud's or fog's backscatter, which do not agree in range.
-    if (config_.range_coherence_m > 0.0) candidates = range_coherent(std::move(candidates), config_.range_coherence_m, config_.coherent_fraction);
+    if (config_.range_coherence_m > 0.0) {
+        candidates = range_coherent(std::move(candidates), config_.range_coherence_m, config_.coherent_fraction);
+        candidates = standing_clear(std::move(candidates), foreground, radius, 1.0);
+    }
 
     // Tracks against candidates by least total distance, each within the distance its target
     // could have flown since it was last seen (the single-target tracker's gate).

@@ -126,28 +126,28 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         kalman_->predict(time_s, config_.kalman_accel_mps2);
         expected = kalman_->x.head<3>();
     }
-    // calRange: the predicted target's range; with no history yet, the median range of the
-    // foreground (mostly the target, which the cue put in the field).
-    double cal_range = 0.0;
-    if (expected) {
-        cal_range = expected->norm();
-    } else if (!foreground.empty()) {
-        std::vector<float> ranges;
-        for (const auto& p : foreground) ranges.push_back(p.norm());
-        std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2), ranges.end());
-        cal_range = ranges[ranges.size() / 2];
-    }
+    // calRange: the predicted target's range; with no history yet, the acquisition range (as the
+    // tracker of every target takes it; the median, a cloud's range, set a radius below the
+    // target's line pitch, which split it into lines that a cloud's nearer clumps outcompeted).
+    const double cal_range = expected ? expected->norm() : acquisition_range_m(foreground);
     d.radius_m = config_.method == Method::rbnn
                      ? config_.rbnn_radius_m
                      : vrbnn_radius_m(config_.lambda.value_or(default_lambda(sensor_)), sensor_, cal_range, config_.bias_m);
 
-    const Points kept = remove_outliers(foreground, d.radius_m, config_.min_neighbours);
+    // Clutter: a volume's backscatter has no neighbours that agree with it in range.
+    const Points kept = config_.range_coherence_m > 0.0
+                            ? remove_incoherent(foreground, d.radius_m, config_.range_coherence_m, config_.min_neighbours)
+                            : remove_outliers(foreground, d.radius_m, config_.min_neighbours);
     const double divergence_rad = sensor_.divergence_mrad * kMrad;
     const auto min_points = static_cast<std::size_t>(config_.min_neighbours) + 1;
     std::vector<Cluster> clusters = rbnn(kept, d.radius_m);
     // Clutter: a cloud's returns chained to the target are cut away, and the tracker takes the
     // core nearest its prediction.
-    if (config_.range_coherence_m > 0.0) clusters = coherent_cores(clusters, config_.range_coherence_m, min_points);
+    if (config_.range_coherence_m > 0.0) {
+        clusters = coherent_cores(clusters, config_.range_coherence_m, min_points);
+        const double line_pitch_rad = sensor_.field_el_deg * kDeg / sensor_.beams_el;
+        for (Cluster& c : clusters) c = without_sparse_lines(c, line_pitch_rad, config_.sparse_line_fraction);
+    }
     std::vector<Cluster> candidates =
         plausible_targets(std::move(clusters), config_.max_diagonal_m, config_.footprint_divergences * divergence_rad, min_points);
 

@@ -13,5 +13,6 @@ void bind_render(py::module_& m);
 void bind_datasets(py::module_& m);
 void bind_campaigns(py::module_& m);
 void bind_detection(py::module_& m);
+void bind_waveforms(py::module_& m);
 
 }  // namespace ladarsim::python

@@ -16,6 +16,7 @@
 #include "frames.h"
 #include "json_objects.h"
 #include "ladarsim/dataset/frame_io.h"
+#include "ladarsim/dataset/poses_file.h"
 #include "ladarsim/core/input_error.h"
 
 namespace ladarsim::python {
@@ -73,6 +74,7 @@ PythonFrame Dataset::frame(std::ptrdiff_t i) {
         f.gimbal_az_rad = number_in(record->second, "gimbal_az_rad");
         f.gimbal_el_rad = number_in(record->second, "gimbal_el_rad");
     }
+    if (const auto& poses = this->poses(); f.index < poses.size()) f.pose = pose_array(poses[f.index]);
     if (const auto* truth = ground_truth()) {
         const auto objects = truth->find(f.index);
         f.ground_truth = ground_truth_list(objects != truth->end() ? objects->second : std::vector<GroundTruthObject>{});
@@ -91,6 +93,14 @@ const std::map<std::uint64_t, std::vector<GroundTruthObject>>* Dataset::ground_t
         truth_loaded_ = true;
     }
     return truth_ ? &*truth_ : nullptr;
+}
+
+const std::vector<Eigen::Isometry3d>& Dataset::poses() {
+    if (!poses_) {
+        const auto file = dir_ / "poses.txt";
+        poses_ = std::filesystem::exists(file) ? read_poses_txt(file) : std::vector<Eigen::Isometry3d>{};
+    }
+    return *poses_;
 }
 
 py::object Dataset::background() {

@@ -6,6 +6,8 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -34,6 +36,8 @@ private:
     std::uint64_t index_of(std::size_t i) const;
     /// ground_truth.json by frame index, read on first use; null without one.
     const std::map<std::uint64_t, std::vector<GroundTruthObject>>* ground_truth();
+    /// poses.txt, a line per frame index, read on first use; empty without one.
+    const std::vector<Eigen::Isometry3d>& poses();
 
     std::filesystem::path dir_;
     std::vector<std::filesystem::path> files_;
@@ -42,6 +46,7 @@ private:
     bool truth_loaded_ = false;
     std::optional<std::map<std::uint64_t, std::vector<GroundTruthObject>>> truth_;
     std::optional<py::array> background_;
+    std::optional<std::vector<Eigen::Isometry3d>> poses_;
 };
 
 struct DatasetIterator {

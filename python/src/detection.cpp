@@ -76,7 +76,7 @@ py::object benchmark_dataset(const py::handle& dataset, const std::string& metho
 
 py::object evaluate_detections(const py::handle& dataset, const py::handle& detections) {
     nlohmann::json report;
-    std::string file = "<dict>";
+    std::string file = "<detections dict>";
     if (py::isinstance<py::dict>(detections)) {
         report = from_python(detections);
     } else {

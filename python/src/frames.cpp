@@ -74,6 +74,14 @@ py::list ground_truth_list(const std::vector<GroundTruthObject>& objects) {
     return list;
 }
 
+py::array pose_array(const Eigen::Isometry3d& world_from_sensor) {
+    py::array_t<double> m({4, 4});
+    auto out = m.mutable_unchecked<2>();
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out(r, c) = world_from_sensor.matrix()(r, c);
+    return m;
+}
+
 PythonFrame python_frame(const Frame& frame) {
     PythonFrame f;
     f.index = frame.index;
@@ -97,7 +105,9 @@ range_image   dict of the EXR's channels (Y, range_m, intensity, object_id of th
               every beam; strongest_range_m, strongest_intensity of its most intense), each a
               rows x columns array, row 0 the top line; None without an EXR
 ground_truth  list of the frame's objects as ground_truth.json holds them; None without one
-time_s        mid-scan time (the ground truth's poses are at it); start_time_s, end_time_s)")
+time_s        mid-scan time (the ground truth's poses are at it); start_time_s, end_time_s
+pose          4 x 4 world-from-sensor matrix at the frame's start (poses.txt): pose @ [x, y, z, 1]
+              takes a point to world coordinates; None for a dataset without poses.txt)")
         .def_readonly("index", &PythonFrame::index)
         .def_readonly("start_time_s", &PythonFrame::start_time_s)
         .def_readonly("end_time_s", &PythonFrame::end_time_s)
@@ -107,6 +117,7 @@ time_s        mid-scan time (the ground truth's poses are at it); start_time_s, 
         .def_readonly("ground_truth", &PythonFrame::ground_truth)
         .def_readonly("gimbal_az_rad", &PythonFrame::gimbal_az_rad)
         .def_readonly("gimbal_el_rad", &PythonFrame::gimbal_el_rad)
+        .def_readonly("pose", &PythonFrame::pose)
         .def("__repr__", [](const PythonFrame& f) {
             return "<ladarsim.Frame " + std::to_string(f.index) + ": " + std::to_string(f.points.shape(0)) + " returns>";
         });

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -26,6 +27,7 @@ struct PythonFrame {
     py::object ground_truth = py::none();  ///< list of object dicts, or None without ground truth
     std::optional<double> gimbal_az_rad;
     std::optional<double> gimbal_el_rad;
+    py::object pose = py::none();  ///< 4 x 4 world-from-sensor at the frame's start, or None
 
     /// Mid-scan time, at which the ground truth's poses are evaluated.
     std::optional<double> time_s() const;
@@ -44,6 +46,9 @@ py::dict range_image_dict(const RangeImage& image);
 
 /// The objects of a frame as ground_truth.json holds them.
 py::list ground_truth_list(const std::vector<GroundTruthObject>& objects);
+
+/// A pose as a 4 x 4 homogeneous matrix.
+py::array pose_array(const Eigen::Isometry3d& world_from_sensor);
 
 /// A frame just rendered: everything a dataset would hold of it.
 PythonFrame python_frame(const Frame& frame);

@@ -5,6 +5,7 @@
 #include "bindings.h"
 #include "ladarsim/dataset/dataset_directory.h"
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/core/log_lines.h"
 
 namespace ladarsim::python {
 
@@ -12,7 +13,8 @@ void bind_errors(py::module_& m) {
     // Kept for the life of the process: the translator may run until the interpreter exits.
     static PyObject* const input_error =
         py::exception<InputError>(m, "InputError", PyExc_ValueError).inc_ref().ptr();
-    py::setattr(input_error, "__doc__", py::str(R"(Bad input: a file (or "<dict>"), the field in it and the problem, in
+    py::setattr(input_error, "__doc__", py::str(R"(Bad input: a file (or the dict given in its place: "<scenario dict>" after its base_dir,
+"<sensor dict>", "<detections dict>"), the field in it and the problem, in
 the one-line message the command line prints; also as the attributes file, field and problem.)"));
     py::register_exception_translator([](std::exception_ptr thrown) {
         try {
@@ -40,8 +42,11 @@ detect(dataset, ...)       Algorithm 1 over a dataset, as `ladarsim detect` repo
 evaluate(dataset, report)  the scores of its boxes, as `ladarsim eval --json` writes them
 benchmark(dataset, ...)    a detector run and scored with EAO, as `ladarsim benchmark --json`
 Sensor.preset(name)        a sensor, its document and derived quantities
+read_waveforms(file)       a frame's full waveforms (render.waveforms) as NumPy arrays
 InputError                 bad input (a ValueError), naming the file, field and problem)";
     m.attr("__version__") = ladarsim::software_json().at("version").get<std::string>();
+    // Warnings and notes as the command line words them (spdlog's own format dates each line).
+    ladarsim::use_ladarsim_log_lines();
     bind_errors(m);
     bind_frames(m);
     bind_sensors(m);
@@ -49,4 +54,5 @@ InputError                 bad input (a ValueError), naming the file, field and 
     bind_datasets(m);
     bind_campaigns(m);
     bind_detection(m);
+    bind_waveforms(m);
 }

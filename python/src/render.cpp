@@ -30,11 +30,13 @@ using sensor_model::Scenario;
 constexpr const char* kCaller = "ladarsim.render()";
 
 /// A scenario file (str or path), or a scenario document held as a dict whose relative paths
-/// start from `base_dir` (default: the working directory).
+/// start from `base_dir` (default: the working directory, named in full so that an error says
+/// where the paths it names start from).
 Scenario scenario_of(const py::handle& scenario, const py::object& base_dir) {
     if (py::isinstance<py::dict>(scenario)) {
         const nlohmann::json document = from_python(scenario);
-        const std::filesystem::path base = base_dir.is_none() ? std::filesystem::path() : base_dir.cast<std::filesystem::path>();
+        const std::filesystem::path base =
+            base_dir.is_none() ? std::filesystem::current_path() : base_dir.cast<std::filesystem::path>();
         py::gil_scoped_release release;
         return sensor_model::load_scenario(document, base);
     }
@@ -75,7 +77,9 @@ public:
         }
         busy_ = false;
         ++next_;
-        return python_frame(frame);
+        PythonFrame f = python_frame(frame);
+        f.pose = pose_array(scenario_->mount.world_from_sensor());
+        return f;
     }
 
     int frames() const { return scenario_->render.frames; }
@@ -185,7 +189,7 @@ void bind_render(py::module_& m) {
           py::arg("out") = py::none(), py::arg("resume") = false,
           R"(Render a scenario (docs/scenario.md): a file's path, or a dict in the scenario format whose
 `extends` and relative paths start from base_dir (default: the working directory; errors name
-"base_dir/<dict>").
+"BASE_DIR/<scenario dict>", the working directory in full when base_dir is not given).
 
 Without out: an iterator of Frame, each rendered when it is asked for (one frame in memory at a
 time), equal value for value to the frames `ladarsim render` writes for the same scenario and seed.

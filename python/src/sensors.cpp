@@ -30,7 +30,7 @@ manifest records it under "sensor".)")
             py::arg("path"), "A sensor file (as `ladarsim sensor from-ouster` writes, or assets/sensors/*.json).")
         .def_static(
             "from_document",
-            [](const py::dict& document) { return sensor_model::read_sensor(from_python(document), "<dict>"); },
+            [](const py::dict& document) { return sensor_model::read_sensor(from_python(document), "<sensor dict>"); },
             py::arg("document"),
             "A sensor document held as a dict, e.g. a dataset's manifest['sensor'] (its 'derived' is recomputed).")
         .def_readonly("name", &Sensor::name)

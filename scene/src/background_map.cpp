@@ -11,12 +11,8 @@
 #include <vector>
 
 #include <Eigen/Geometry>
-#include <pcl/PCLPointCloud2.h>
 #include <pcl/common/centroid.h>
 #include <pcl/common/eigen.h>
-#include <pcl/exceptions.h>
-#include <pcl/console/print.h>
-#include <pcl/io/ply_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 #include <spdlog/spdlog.h>
@@ -24,78 +20,11 @@
 #include "ladarsim/core/input_error.h"
 #include "ladarsim/dataset/pcd_file.h"
 #include "ladarsim/scene/las_file.h"
+#include "ladarsim/scene/ply_file.h"
 
 namespace ladarsim::scene {
 
 namespace {
-
-/// One scalar field of a PCLPointCloud2, whatever its stored type.
-class FieldReader {
-public:
-    FieldReader(const pcl::PCLPointCloud2& cloud, const pcl::PCLPointField& field)
-        : cloud_(cloud), offset_(field.offset), datatype_(field.datatype) {}
-
-    double operator()(std::size_t point) const {
-        const std::uint8_t* p = cloud_.data.data() + point * cloud_.point_step + offset_;
-        switch (datatype_) {
-            case pcl::PCLPointField::INT8: return read<std::int8_t>(p);
-            case pcl::PCLPointField::UINT8: return read<std::uint8_t>(p);
-            case pcl::PCLPointField::INT16: return read<std::int16_t>(p);
-            case pcl::PCLPointField::UINT16: return read<std::uint16_t>(p);
-            case pcl::PCLPointField::INT32: return read<std::int32_t>(p);
-            case pcl::PCLPointField::UINT32: return read<std::uint32_t>(p);
-            case pcl::PCLPointField::INT64: return static_cast<double>(read<std::int64_t>(p));
-            case pcl::PCLPointField::UINT64: return static_cast<double>(read<std::uint64_t>(p));
-            case pcl::PCLPointField::FLOAT32: return read<float>(p);
-            case pcl::PCLPointField::FLOAT64: return read<double>(p);
-            default: return std::nan("");
-        }
-    }
-
-private:
-    template <typename T>
-    static T read(const std::uint8_t* p) {
-        T v;
-        std::memcpy(&v, p, sizeof v);  // fields need not be aligned
-        return v;
-    }
-    const pcl::PCLPointCloud2& cloud_;
-    std::uint32_t offset_;
-    std::uint8_t datatype_;
-};
-
-const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& cloud, const std::string& name) {
-    for (const auto& f : cloud.fields) {
-        if (f.name == name) return &f;
-    }
-    return nullptr;
-}
-
-/// Reads a PLY file with PCL's reader (PCD files have our own, read_pcd; PLY keeps PCL's until
-/// a map needs more than it offers). PCL reports its failures on stderr: silenced, ours is the
-/// one clear line.
-pcl::PCLPointCloud2 read_ply(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    pcl::PCLPointCloud2 cloud;
-    int status = -1;
-    const pcl::console::VERBOSITY_LEVEL verbosity = pcl::console::getVerbosityLevel();
-    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    struct Restore {
-        pcl::console::VERBOSITY_LEVEL level;
-        ~Restore() { pcl::console::setVerbosityLevel(level); }
-    } restore{verbosity};
-    try {
-        status = pcl::io::loadPLYFile(name, cloud);
-    } catch (const pcl::PCLException& e) {
-        throw InputError(name, "(file)", std::string("not a readable PLY file: ") + e.what());
-    }
-    if (status < 0) throw InputError(name, "(file)", "not a readable PLY file");
-    const std::size_t n = std::size_t{cloud.width} * cloud.height;
-    if (cloud.data.size() < n * cloud.point_step) {
-        throw InputError(name, "(file)", "PLY data is shorter than its header says");
-    }
-    return cloud;
-}
 
 /// Least-squares plane of a neighbourhood: its normal, unless the points do not span a plane
 /// (fewer than three distinct points, or all on one line), and the direction the points spread
@@ -165,19 +94,14 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
     } else if (!std::filesystem::is_regular_file(file)) {
         throw InputError(name, "(file)", "no such file");
     } else if (extension == ".ply") {
-        const pcl::PCLPointCloud2 cloud2 = read_ply(file);
-        const pcl::PCLPointField* fx = find_field(cloud2, "x");
-        const pcl::PCLPointField* fy = find_field(cloud2, "y");
-        const pcl::PCLPointField* fz = find_field(cloud2, "z");
-        if (!fx || !fy || !fz) throw InputError(name, "FIELDS", "needs fields x, y and z");
-        const pcl::PCLPointField* fi = find_field(cloud2, "intensity");
-        const FieldReader x(cloud2, *fx), y(cloud2, *fy), z(cloud2, *fz);
-        std::optional<FieldReader> intensity_of;
-        if (fi) intensity_of.emplace(cloud2, *fi);
-        const std::size_t n_file = std::size_t{cloud2.width} * cloud2.height;
-        map.points_world.reserve(n_file);
-        for (std::size_t i = 0; i < n_file; ++i)
-            add(Eigen::Vector3d(x(i), y(i), z(i)), intensity_of ? std::optional<double>((*intensity_of)(i)) : std::nullopt);
+        const PlyVertices ply = read_ply(file);
+        const std::optional<std::size_t> x = ply.property("x"), y = ply.property("y"), z = ply.property("z");
+        if (!x || !y || !z) throw InputError(name, "element vertex", "needs properties x, y and z");
+        const std::optional<std::size_t> i_property = ply.property("intensity");
+        map.points_world.reserve(ply.count);
+        for (std::size_t i = 0; i < ply.count; ++i)
+            add(Eigen::Vector3d(ply.value(i, *x), ply.value(i, *y), ply.value(i, *z)),
+                i_property ? std::optional<double>(ply.value(i, *i_property)) : std::nullopt);
     } else {
         const PcdCloud cloud = read_pcd(file);
         const std::size_t x = *cloud.field("x"), y = *cloud.field("y"), z = *cloud.field("z");

@@ -63,6 +63,7 @@ grep -q "^wrote .*card.md" "$work/a.out" || fail "the summary does not name the 
 
 # Shards 0/2 and 1/2 into one directory equal the unsharded run (4 sequences of 2 frames).
 "$bin" campaign "$tiny" --out "$work/whole" --quiet >/dev/null 2>"$work/err" || fail "the tiny spec failed: $(cat "$work/err")"
+! grep -q "resume" "$work/err" || fail "a fresh campaign warned about resuming: $(head -1 "$work/err")"
 "$bin" campaign "$tiny" --out "$work/sharded" --shard 0/2 --quiet >"$work/out" 2>"$work/err" || fail "shard 0/2 failed: $(cat "$work/err")"
 grep -q "^2 of the campaign's 4 sequences are finished" "$work/out" || fail "shard 0/2 does not say what is left: $(cat "$work/out")"
 [ ! -e "$work/sharded/campaign.json" ] || fail "shard 0/2 wrote an index of a campaign half rendered"

@@ -46,6 +46,7 @@ for f in "$work"/t1/frames/*; do
   cmp -s "$f" "$work/t2/frames/$(basename "$f")" || fail "$(basename "$f") differs between 1 and 2 threads"
 done
 cmp -s "$work/t1/ground_truth.json" "$work/t2/ground_truth.json" || fail "ground truth differs between 1 and 2 threads"
+cmp -s "$work/t1/background.pcd" "$work/t2/background.pcd" || fail "initial map differs between 1 and 2 threads (surveyed while the frames render)"
 
 # Rendering again into a dataset replaces it whole: no stale frames from the longer run survive.
 "$bin" render "$good" --out "$work/t1" --frames 1 --quiet >/dev/null || fail "re-render into an existing dataset failed"

@@ -14,7 +14,7 @@ grep -qx "ladarsim $version" "$work/stdout" || fail "--version does not print 'l
 rc=$?
 [ "$rc" -eq 2 ] || fail "an unknown subcommand exited $rc, expected 2"
 grep -q "unknown subcommand 'rendr'" "$work/stderr" || fail "the unknown subcommand is not named: $(cat "$work/stderr")"
-for c in render sensor table1 detect eval import-velodyne import-ouster export-kitti make-assets preview view bench; do
+for c in render sensor table1 detect eval import-velodyne import-ouster export-kitti export-las make-assets preview view bench; do
   grep -q "$c" "$work/stderr" || fail "the valid subcommand $c is not listed: $(cat "$work/stderr")"
 done
 grep -q "A subcommand is required" "$work/stderr" && fail "an unknown subcommand is reported as a missing one"

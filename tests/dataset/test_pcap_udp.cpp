@@ -8,28 +8,15 @@
 #include "ladarsim/dataset/pcap_udp.h"
 #include "../support/pcap_writer.h"
 #include "../support/scratch_dir.h"
+#include "../support/udp_datagrams.h"
 
 using namespace ladarsim;
 using namespace ladarsim;
 using test::Bytes;
 using test::PcapRecord;
+using test::datagrams;
 
 namespace {
-
-struct Seen {
-    std::size_t record;
-    double time_s;
-    std::uint16_t port;
-    Bytes payload;
-};
-
-std::vector<Seen> datagrams(const std::filesystem::path& file) {
-    std::vector<Seen> seen;
-    for_each_udp_datagram(file, [&](const UdpDatagram& d) {
-        seen.push_back({d.record, d.time_s, d.destination_port, Bytes(d.payload.begin(), d.payload.end())});
-    });
-    return seen;
-}
 
 Bytes counting(std::size_t size) {
     Bytes b(size);

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import ladarsim
-from conftest import SHARED_DIR, read_json, run_cli
+from conftest import SHARED_DIR, SMALL, read_json, run_cli
 from pcd_numpy import read_pcd
 
 VLP16_CAPTURE = SHARED_DIR / "data" / "vlp16" / "velodyne_vlp16.pcap"
@@ -63,3 +63,24 @@ def test_an_imported_vlp16_capture_reads_as_recorded_frames(tmp_path):
         spans.append(azimuth.max() - azimuth.min())
     # The capture starts mid-revolution; a whole one has points all around the sensor.
     assert max(spans) > 355
+
+
+def test_a_frames_pose_takes_its_points_to_the_world(cli_small):
+    """poses.txt read as each frame's 4 x 4 world-from-sensor matrix: the scenario's mount (its
+    position_m and yaw_deg, composed here by hand), the same for a frame rendered in memory."""
+    scenario = read_json(ladarsim.Dataset(cli_small).manifest["scenario_file"])
+    sensor = scenario["sensor"]
+    yaw = np.radians(sensor.get("yaw_deg", 0.0))
+    assert sensor.get("pitch_deg", 0.0) == 0.0 and sensor.get("roll_deg", 0.0) == 0.0
+    expected = np.eye(4)
+    expected[:2, :2] = [[np.cos(yaw), -np.sin(yaw)], [np.sin(yaw), np.cos(yaw)]]
+    expected[:3, 3] = sensor["position_m"]
+    lines = (cli_small / "poses.txt").read_text().splitlines()
+    dataset = ladarsim.Dataset(cli_small)
+    assert len(lines) == len(dataset)
+    for frame, line in zip(dataset, lines):
+        assert frame.pose.shape == (4, 4)
+        assert np.allclose(frame.pose, expected, atol=1e-12)
+        assert np.array_equal(frame.pose[:3].ravel(), np.array(line.split(), dtype=float))
+    rendered = next(iter(ladarsim.render(SMALL, frames=1)))
+    assert np.array_equal(rendered.pose, dataset[0].pose)

@@ -41,7 +41,8 @@ def test_unknown_or_mistyped_options_are_input_errors(cli_small):
         ladarsim.detect(cli_small, radius=0.3)
     with pytest.raises(ladarsim.InputError, match=r"method"):
         ladarsim.detect(cli_small, method="dbscan")
-    with pytest.raises(ladarsim.InputError, match=r"dataset: missing"):
+    # A dict in place of a file is named by what it is, as Python names what is not a file.
+    with pytest.raises(ladarsim.InputError, match=r"^<detections dict>: dataset: missing"):
         ladarsim.evaluate(cli_small, {"detections": []})
     report = ladarsim.detect(cli_small)
     with pytest.raises(ladarsim.InputError, match=r"detections: no detection for frame 0"):

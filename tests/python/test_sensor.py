@@ -33,5 +33,12 @@ def test_a_sensor_file_reads_as_its_preset_and_a_typo_names_file_and_key(tmp_pat
     with pytest.raises(ladarsim.InputError) as error:
         ladarsim.Sensor.from_file(broken)
     assert error.value.file == str(broken) and error.value.field == "scan.colums"
+    document["scan"].pop("colums")
+    document["scan"]["chanels"] = document["scan"].pop("channels")
+    with pytest.raises(ladarsim.InputError) as error:
+        ladarsim.Sensor.from_document(document)
+    # A misspelt required key, in a dict named as Python names what is not a file.
+    assert error.value.file == "<sensor dict>" and error.value.field == "scan.chanels"
+    assert error.value.problem == 'unknown key; did you mean "channels"?'
     with pytest.raises(ValueError, match="the presets are .*paper_ladar"):
         ladarsim.Sensor.preset("paper_lader")

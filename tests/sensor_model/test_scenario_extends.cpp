@@ -119,7 +119,7 @@ TEST_CASE("misused extends is one error naming the file and the field", "[scenar
     CHECK_THROWS_WITH(load_scenario(dir / "x.json"), Contains("extends itself"));
 }
 
-TEST_CASE("a scenario held in memory is read as a file of that folder would be, and named <dict>", "[scenario]") {
+TEST_CASE("a scenario held in memory is read as a file of that folder would be, and named <scenario dict>", "[scenario]") {
     const test::ScratchDir dir;
     write_base(dir / "a");
     const nlohmann::json variant = nlohmann::json::parse(R"({
@@ -128,7 +128,7 @@ TEST_CASE("a scenario held in memory is read as a file of that folder would be, 
                    "trajectory": {"type": "fixed", "position_m": [300, 0, 30]}}]
     })");
     const Scenario s = load_scenario(variant, dir.path());
-    CHECK(s.file == dir / "<dict>");
+    CHECK(s.file == dir / "<scenario dict>");
     CHECK(s.render.frames == 7);
     REQUIRE(s.scene.objects.size() == 4);
     CHECK(object(s, 2).model->mesh.triangles.size() == 2);  // the base's path, relative to the base
@@ -144,6 +144,6 @@ TEST_CASE("a scenario held in memory is read as a file of that folder would be, 
         return "no error";
     };
     CHECK(error_of(R"({"extends": "a/base.json", "render": {"frame": 3}})") ==
-          (dir / "<dict>").string() + ": render.frame: unknown key");
-    CHECK_THAT(error_of(R"({"extends": "none.json"})"), Contains("<dict>: extends: no such file"));
+          (dir / "<scenario dict>").string() + ": render.frame: unknown key");
+    CHECK_THAT(error_of(R"({"extends": "none.json"})"), Contains("<scenario dict>: extends: no such file"));
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Captures written by hand for the pcap tests: little-endian microsecond libpcap files of
-// Ethernet frames, UDP over IPv4 split into fragments the way a host sends a datagram larger
+// Ethernet frames, the same records as pcapng (either byte order, any time-stamp resolution), UDP over IPv4 split into fragments the way a host sends a datagram larger
 // than its MTU, and the records of an existing capture read back.
 #include <algorithm>
 #include <cstdint>
@@ -46,6 +46,98 @@ inline void write_pcap(const std::filesystem::path& file, const std::vector<Pcap
         b.insert(b.end(), r.frame.begin(), r.frame.end());
     }
     std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+}
+
+/// How write_pcapng lays its file out.
+struct PcapngLayout {
+    bool big_endian = false;
+    int nanoseconds = 0;           ///< 1: if_tsresol 9 (nanosecond time stamps); 0: the default microseconds
+    std::uint32_t link_type = 1;
+    bool extra_blocks = true;      ///< a name-resolution and a statistics block, which readers pass over
+    bool simple_packets = false;   ///< simple packet blocks (no time stamp) in place of enhanced ones
+    bool obsolete_packets = false; ///< packet blocks (pcapng 1.0's, before enhanced ones) in their place
+};
+
+/// `records` as Wireshark saves them: a section header, an interface description, one enhanced
+/// packet block a record (a second section, in the other byte order, holds the second half).
+inline void write_pcapng(const std::filesystem::path& file, const std::vector<PcapRecord>& records, const PcapngLayout& layout = {}) {
+    Bytes out;
+    bool big = layout.big_endian;
+    auto u16 = [&](Bytes& b, std::uint16_t v) {
+        for (int i = 0; i < 2; ++i) b.push_back(static_cast<unsigned char>(v >> (big ? 8 - 8 * i : 8 * i)));
+    };
+    auto u32 = [&](Bytes& b, std::uint32_t v) {
+        for (int i = 0; i < 4; ++i) b.push_back(static_cast<unsigned char>(v >> (big ? 24 - 8 * i : 8 * i)));
+    };
+    auto block = [&](std::uint32_t type, Bytes body) {
+        while (body.size() % 4) body.push_back(0);
+        const auto length = static_cast<std::uint32_t>(body.size() + 12);
+        u32(out, type);
+        u32(out, length);
+        out.insert(out.end(), body.begin(), body.end());
+        u32(out, length);
+    };
+    auto section = [&] {
+        Bytes shb;
+        u32(shb, 0x1A2B3C4Du);
+        u16(shb, 1);
+        u16(shb, 0);
+        for (int i = 0; i < 8; ++i) shb.push_back(0xFF);  // section length: not given
+        block(0x0A0D0D0Au, shb);
+        Bytes idb;
+        u16(idb, static_cast<std::uint16_t>(layout.link_type));
+        u16(idb, 0);
+        u32(idb, 65535);
+        if (layout.nanoseconds) {
+            u16(idb, 9);  // if_tsresol
+            u16(idb, 1);
+            idb.insert(idb.end(), {9, 0, 0, 0});
+        }
+        u16(idb, 0);  // opt_endofopt
+        u16(idb, 0);
+        block(1, idb);
+    };
+    section();
+    for (std::size_t n = 0; n < records.size(); ++n) {
+        const PcapRecord& r = records[n];
+        if (n > 0 && n == records.size() / 2) {
+            big = !big;
+            section();
+        }
+        if (layout.extra_blocks && n == 1) {
+            Bytes nrb;  // a name-resolution block holding only its end of records
+            u32(nrb, 0);
+            block(4, nrb);
+        }
+        const auto wire = r.wire_length ? r.wire_length : static_cast<std::uint32_t>(r.frame.size());
+        Bytes body;
+        if (layout.simple_packets) {
+            u32(body, wire);
+            body.insert(body.end(), r.frame.begin(), r.frame.end());
+            block(3, body);
+            continue;
+        }
+        const std::uint64_t stamp = layout.nanoseconds ? r.seconds * 1'000'000'000ull + r.microseconds * 1000ull
+                                                       : r.seconds * 1'000'000ull + r.microseconds;
+        if (layout.obsolete_packets) {
+            u16(body, 0);  // interface
+            u16(body, 0);  // drops
+        } else {
+            u32(body, 0);  // interface
+        }
+        u32(body, static_cast<std::uint32_t>(stamp >> 32));
+        u32(body, static_cast<std::uint32_t>(stamp));
+        u32(body, static_cast<std::uint32_t>(r.frame.size()));
+        u32(body, wire);
+        body.insert(body.end(), r.frame.begin(), r.frame.end());
+        block(layout.obsolete_packets ? 2 : 6, body);
+    }
+    if (layout.extra_blocks) {
+        Bytes isb;  // interface statistics: interface 0, time stamp 0, no options
+        for (int i = 0; i < 12; ++i) isb.push_back(0);
+        block(5, isb);
+    }
+    std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
 }
 
 /// The records of a capture written as above (or by tcpdump on a little-endian host).

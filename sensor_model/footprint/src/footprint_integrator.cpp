@@ -1,6 +1,7 @@
 #include "ladarsim/sensor_model/footprint/footprint_integrator.h"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 #include "beam_cone.h"
@@ -8,6 +9,8 @@
 #include "curved_patch.h"
 #include "footprint_context.h"
 #include "ladarsim/sensor_model/footprint/target_lattice.h"
+#include "map_discs.h"
+#include "map_scanline.h"
 #include "plane_patch.h"
 #include "recorded_map_sampling.h"
 #include "straight_edge.h"
@@ -32,12 +35,14 @@ constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's ce
 /// bright or dim, the beam takes that instead: this grid is for a footprint whose edge crosses the
 /// target, or a raster whose footprints do not overlap along a line.)
 constexpr double kBrightTargetThresholds = 3.0;
+/// Lines across a footprint over a recorded map.
+constexpr int kMapLines = 32;
 
 }  // namespace
 
 struct FootprintIntegrator::Strategies {
     Strategies(const FootprintSettings& settings, const Sensor& sensor, const std::vector<scene::SceneObject>& objects,
-               const raytrace::TracedScene& traced, const EchoRadiometry& radiometry)
+               const scene::BackgroundMap* map_discs, const raytrace::TracedScene& traced, const EchoRadiometry& radiometry)
         : context(settings, sensor, traced, radiometry),
           cone(context, objects),
           reference(context, context.shape.footprint()),
@@ -50,7 +55,15 @@ struct FootprintIntegrator::Strategies {
                       nullptr),
           medium_cells(context, {kOutlineBase, kFootprintSamples, false}, nullptr, &map),
           rest_cells(context, {kFootprintBase, kFootprintSamples, false}, nullptr, &map),
-          footprint_cells(context, {kFootprintBase, kFootprintSamples, false}, &edge, &map) {}
+          footprint_cells(context, {kFootprintBase, kFootprintSamples, false}, &edge, &map) {
+        if (map_discs && !map_discs->points_world.empty()) discs.emplace(*map_discs, settings.origin_world);
+        if (discs && !context.adaptive && settings.map_lines > 0)
+            map_reference.emplace(context, *discs, settings.map_lines, std::max(1, settings.samples / settings.map_lines));
+        if (discs && context.adaptive) {
+            map_lines.emplace(context, *discs, kMapLines, 0);
+            map.integrate_along_lines(&*map_lines);
+        }
+    }
 
     /// Targets are sampled where they can be; the rest of the footprint, like a footprint without
     /// targets, is one plane patch when the probes agree, and refined otherwise (always in media).
@@ -70,12 +83,15 @@ struct FootprintIntegrator::Strategies {
     CellRefinement rest_cells;       ///< what targets leave, or a footprint whose edge failed: the map first
     CellRefinement footprint_cells;  ///< a whole footprint: an edge or the map at its first cells
     const TargetLattice* target_lattice = nullptr;
+    std::optional<MapDiscs> discs;
+    std::optional<MapScanline> map_reference;  ///< fixed sub-rays' counterpart over a recorded map (settings.map_lines)
+    std::optional<MapScanline> map_lines;      ///< the recorded map's footprints where the map strategy takes them
 };
 
 FootprintIntegrator::FootprintIntegrator(const FootprintSettings& settings, const Sensor& sensor,
-                                         const std::vector<scene::SceneObject>& objects, const raytrace::TracedScene& traced,
-                                         const EchoRadiometry& radiometry)
-    : s_(std::make_unique<Strategies>(settings, sensor, objects, traced, radiometry)) {}
+                                         const std::vector<scene::SceneObject>& objects, const scene::BackgroundMap* map,
+                                         const raytrace::TracedScene& traced, const EchoRadiometry& radiometry)
+    : s_(std::make_unique<Strategies>(settings, sensor, objects, map, traced, radiometry)) {}
 
 FootprintIntegrator::~FootprintIntegrator() = default;
 
@@ -83,7 +99,6 @@ bool FootprintIntegrator::adaptive() const { return s_->context.adaptive; }
 const BeamShape& FootprintIntegrator::shape() const { return s_->context.shape; }
 int FootprintIntegrator::grid_base() const { return s_->context.grid_base; }
 std::size_t FootprintIntegrator::map_samples() const { return s_->context.outline_samples; }
-void FootprintIntegrator::share_sub_rays(const SubRayLattice* lattice) { s_->map.share_sub_rays(lattice); }
 void FootprintIntegrator::share_target_sub_rays(const TargetLattice* lattice) { s_->target_lattice = lattice; }
 
 void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const {
@@ -93,7 +108,9 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     const FootprintContext& context = s_->context;
     const FootprintPart whole{context.shape.footprint().square(), std::nullopt, 1.0, 0};
     if (!context.adaptive) {
-        s_->reference.integrate({aim, probes, {}, context.traced.has_volumes(), frame, 0}, whole, out);
+        const BeamSetting beam{aim, probes, {}, context.traced.has_volumes(), frame, 0};
+        if (!s_->map_reference || s_->map_reference->integrate(beam, whole, out).outcome == Outcome::declined)
+            s_->reference.integrate(beam, whole, out);
         return;
     }
     thread_local TargetsInCone targets;
@@ -115,6 +132,10 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     }
     if (targets.media) {
         s_->medium_cells.integrate(beam, whole, out);
+        return;
+    }
+    if (s_->map_lines && s_->map.met_by(witnesses)) {
+        s_->map_lines->integrate(beam, whole, out);
         return;
     }
     const Outcome patch = s_->plane.integrate(beam, whole, out).outcome;
@@ -162,6 +183,10 @@ void FootprintIntegrator::Strategies::integrate_targets(const BeamSetting& beam,
     }
     const double rest = 1.0 - sampled;
     const FootprintPart rest_part{context.shape.footprint().square(), *targets.outline, rest, kComplementSamples};
+    if (rest > 1e-9 && !beam.media && map_lines && map.met_by(witnesses)) {
+        map_lines->integrate(beam, rest_part, out);
+        return;
+    }
     const Outcome patch = rest > 1e-9 && !beam.media ? plane.integrate(beam, rest_part, out).outcome : Outcome::declined;
     if (rest > 1e-9 && (patch == Outcome::declined || patch == Outcome::parted)) rest_cells.integrate(with_seeds(), rest_part, out);
 }

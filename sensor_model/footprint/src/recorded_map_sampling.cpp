@@ -20,11 +20,7 @@ bool RecordedMapSampling::met_by(std::span<const Probe* const> witnesses) const 
 }
 
 Integration RecordedMapSampling::integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const {
-    // Where footprints overlap, their neighbours' sub-rays are this one's too.
-    if (lattice_ && !beam.media) {
-        lattice_->gather(beam.aim.world_from_beam, beam.aim.cell, part.excluded, part.share, out);
-        return {Outcome::integrated, part.share};
-    }
+    if (lines_ && !beam.media) return lines_->integrate(beam, part, out);
     return own_.integrate(beam, part, out);
 }
 

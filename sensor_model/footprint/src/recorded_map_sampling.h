@@ -6,7 +6,7 @@
 
 #include "footprint_context.h"
 #include "ladarsim/sensor_model/footprint/footprint_strategy.h"
-#include "ladarsim/sensor_model/footprint/sub_ray_lattice.h"
+#include "map_scanline.h"
 #include "stratified_sub_rays.h"
 
 namespace ladarsim::sensor_model {
@@ -16,9 +16,9 @@ public:
     /// Its own stratified sub-rays at the outline budget (context.outline_samples).
     explicit RecordedMapSampling(const FootprintContext& context);
 
-    /// Where footprints overlap, the lattice's shared sub-rays (without media) instead of its own
-    /// (null: its own). Set before rendering.
-    void share_sub_rays(const SubRayLattice* lattice) { lattice_ = lattice; }
+    /// Without media, the map's discs integrated along lines instead of any sub-rays (null: the
+    /// sub-rays). Set before rendering.
+    void integrate_along_lines(const MapScanline* lines) { lines_ = lines; }
     /// Whether the witnesses inside the footprint met the recorded map.
     bool met_by(std::span<const Probe* const> witnesses) const;
 
@@ -27,7 +27,7 @@ public:
 private:
     const FootprintContext& context_;
     StratifiedSubRays own_;
-    const SubRayLattice* lattice_ = nullptr;
+    const MapScanline* lines_ = nullptr;
 };
 
 }  // namespace ladarsim::sensor_model

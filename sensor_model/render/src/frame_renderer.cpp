@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -23,11 +24,28 @@ GimbalPointing initial_pointing(const SensorMount& mount, GimbalPointing cue, bo
     return p;
 }
 
+/// A frame's waveform record before its windows: the receiver constants its samples are read with.
+FrameWaveforms waveform_header(std::uint64_t frame, const Scenario& scenario, const BeamReceiver& receiver) {
+    FrameWaveforms w;
+    w.frame = frame;
+    const ApdReceiver& apd = receiver.apd();
+    w.receiver.sample_interval_s = receiver.waveform().bin_s();
+    w.receiver.pulse_fwhm_s = scenario.sensor.transmitter.pulse_width_ns * 1e-9;
+    w.receiver.threshold_a = apd.threshold_a();
+    w.receiver.release_a = receiver.waveform().release_a();
+    w.receiver.noise_floor_a = apd.noise_floor_a();
+    w.receiver.saturation_a = apd.saturation_a();
+    // Frames report intensity as primary photo-electrons per joule on the detector (responsivity / q).
+    w.receiver.photoelectrons_per_coulomb = scenario.sensor.receiver.responsivity_a_per_w / kElementaryCharge_c / apd.amps_per_watt();
+    return w;
+}
+
 /// What the footprint integrator takes of the scenario.
 FootprintSettings footprint_settings(const Scenario& scenario) {
     FootprintSettings settings;
     settings.origin_world = scenario.mount.position_world;
     settings.samples = scenario.render.footprint_samples;
+    settings.map_lines = scenario.render.footprint_map_lines;
     settings.tolerance = scenario.render.footprint_tolerance;
     settings.truncation = scenario.render.footprint_truncation;
     settings.jitter = scenario.render.jitter;
@@ -48,7 +66,8 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
       raster_(*scenario.sensor.scan),
       receiver_(scenario.sensor, scenario.atmosphere, scenario.render.noise),
       radiometry_(scenario.sensor, receiver_),
-      integrator_(footprint_settings(scenario), scenario.sensor, scenario.scene.objects, traced_, radiometry_),
+      integrator_(footprint_settings(scenario), scenario.sensor, scenario.scene.objects,
+                  scenario.scene.background ? &*scenario.scene.background : nullptr, traced_, radiometry_),
       world_from_sensor_rotation_(scenario.mount.world_from_sensor().linear()) {
     using Eigen::AngleAxisd;
     for (int row = 0; row < raster_.rows(); ++row) {
@@ -62,16 +81,6 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         truth_boxes_model_.push_back(scene::animates(*object.model, object.animation) ? scene::animated_bounds(*object.model, object.animation)
                                                                                       : Eigen::AlignedBox3d());
     if (integrator_.adaptive()) find_neighbours();
-    const bool map = scenario.scene.background && !scenario.scene.background->points_world.empty();
-    if (integrator_.adaptive() && map &&
-        SubRayLattice::overlap(integrator_.shape().footprint(), integrator_.shape().ellipticity(), raster_) >= SubRayLattice::kMinOverlap) {
-        lattice_ = std::make_unique<SubRayLattice>(
-            traced_, raster_, integrator_.shape().footprint(), integrator_.shape().ellipticity(), static_cast<std::size_t>(SubRayLattice::kBudgetOverStratified * static_cast<double>(integrator_.map_samples())), scenario.mount.position_world,
-            world_from_sensor_rotation_, scenario.sensor.receiver.max_range_m, scenario.render.seed, scenario.render.jitter,
-            [this](const raytrace::Hit& h) { return radiometry_.echo_energy_j(1.0, h.reflectance, h.cos_incidence, h.range_m, 1.0); });
-        if (lattice_->usable()) integrator_.share_sub_rays(lattice_.get());
-        else lattice_.reset();
-    }
     if (integrator_.adaptive() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
         target_lattice_ = std::make_unique<TargetLattice>(traced_, raster_, integrator_.shape(), radiometry_, integrator_.grid_base(),
                                                           scenario.mount.position_world,
@@ -234,7 +243,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
 }
 
 std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_step, std::uint64_t frame,
-                                               std::uint64_t& rays) const {
+                                               std::uint64_t& rays, std::vector<WaveformWindow>* windows) const {
     const auto& sensor = scenario_.sensor;
     const Eigen::Matrix3d sensor_from_world = scenario_.mount.world_from_sensor().linear().transpose();
     // Primary photo-electrons per joule on the detector: responsivity / q.
@@ -273,7 +282,14 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
 
         const BeamKey key{scenario_.render.seed, frame, a.cell};
         std::uint8_t return_index = 0;
-        receiver_.receive(surfaces, key, detected);
+        const std::size_t windows_before = windows ? windows->size() : 0;
+        receiver_.receive(surfaces, key, detected, windows);
+        if (windows)
+            for (std::size_t w = windows_before; w < windows->size(); ++w) {
+                (*windows)[w].column = static_cast<std::uint16_t>(beam.column);
+                (*windows)[w].row = static_cast<std::uint16_t>(beam.row);
+                (*windows)[w].time_s = a.time_s;
+            }
         if (detected.empty()) continue;
         const Eigen::Vector3d axis_sensor = sensor_from_world * a.world_from_beam.col(0);
         const GimbalPointing beam_angles = pointing_towards(axis_sensor);
@@ -360,7 +376,6 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     tbb::parallel_for(0, raster_.rows(), [&](int row) {
         rays_by_row[static_cast<std::size_t>(row)] = aim_row(row, pointing, frame.start_time_s);
     });
-    if (lattice_) lattice_->start_frame(pointing, index);
     if (target_lattice_) target_lattice_->start_frame(pointing, index, frame.start_time_s);
     // Pass 2 in stretches of a line: lines differ in cost (the horizon's against the sky's), and
     // stretches keep both cores busy.
@@ -368,11 +383,23 @@ Frame FrameRenderer::render_at(std::uint64_t index, GimbalPointing pointing) {
     const int stretches = (raster_.columns() + kStepsPerTask - 1) / kStepsPerTask;
     std::vector<std::vector<Return>> by_stretch(rows * static_cast<std::size_t>(stretches));
     std::vector<std::uint64_t> rays_by_stretch(by_stretch.size(), 0);
+    const bool record_waveforms = scenario_.render.waveforms;
+    std::vector<std::vector<WaveformWindow>> windows_by_stretch(record_waveforms ? by_stretch.size() : 0);
     tbb::parallel_for(0, static_cast<int>(by_stretch.size()), [&](int task) {
         const int row = task / stretches, first = (task % stretches) * kStepsPerTask;
-        by_stretch[static_cast<std::size_t>(task)] = trace_steps(row, first, std::min(first + kStepsPerTask, raster_.columns()), index,
-                                                                 rays_by_stretch[static_cast<std::size_t>(task)]);
+        const auto t = static_cast<std::size_t>(task);
+        by_stretch[t] = trace_steps(row, first, std::min(first + kStepsPerTask, raster_.columns()), index, rays_by_stretch[t],
+                                    record_waveforms ? &windows_by_stretch[t] : nullptr);
     });
+    waveforms_last_frame_ = {};
+    if (record_waveforms) {
+        waveforms_last_frame_ = waveform_header(index, scenario_, receiver_);
+        for (auto& piece : windows_by_stretch)
+            for (auto& w : piece) waveforms_last_frame_.windows.push_back(std::move(w));
+        // Stretches are in raster order already; a triangle sweep's odd lines fired right to left.
+        std::stable_sort(waveforms_last_frame_.windows.begin(), waveforms_last_frame_.windows.end(),
+                         [](const WaveformWindow& a, const WaveformWindow& b) { return std::tie(a.row, a.column) < std::tie(b.row, b.column); });
+    }
     std::vector<std::vector<Return>> by_row(rows);
     for (std::size_t row = 0; row < rows; ++row) {
         std::vector<Return>& returns = by_row[row];

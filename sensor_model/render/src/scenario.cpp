@@ -40,6 +40,7 @@ RenderSettings read_render(JsonFields& render) {
     r.footprint_samples = static_cast<int>(render.integer("footprint_samples", 0, 4096, r.footprint_samples));
     r.footprint_tolerance = render.number("footprint_tolerance", 1e-4, 1.0, r.footprint_tolerance);
     r.footprint_truncation = render.number("footprint_truncation", 0.1, 4.0, r.footprint_truncation);
+    r.waveforms = render.boolean("waveforms", r.waveforms);
     render.reject_unknown_keys();
     return r;
 }

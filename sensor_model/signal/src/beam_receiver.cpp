@@ -122,7 +122,8 @@ std::vector<DetectedReturn> BeamReceiver::receive(std::vector<BeamSurface> surfa
     return returns;
 }
 
-void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns) const {
+void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns,
+                           std::vector<WaveformWindow>* windows) const {
     returns.clear();
     // The receiver's minimum range: echoes from closer (by their true range, before any folding)
     // never reach a detector that is still blind from the outgoing pulse.
@@ -153,10 +154,10 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
     }
 
     RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);
-    if (surfaces.size() == 1) {
+    if (surfaces.size() == 1 && !windows) {
         const DetectedReturn r = closed_form(surfaces.front(), noise);
         if (r.energy_j >= 0.0) returns.push_back(r);
-    } else if (surfaces.size() > 1) {
+    } else if (!surfaces.empty()) {
         thread_local std::vector<Echo> echoes, folded;
         thread_local std::vector<DetectedPulse> pulses;
         echoes.clear();
@@ -172,7 +173,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
             append_merged(folded, pulse_sigma_m, echoes);
         }
         RandomSequence waveform_noise(key.seed, RandomStream::waveform_noise, key.frame, key.beam);
-        waveform_.detect(echoes, noise_ ? &waveform_noise : nullptr, pulses);
+        waveform_.detect(echoes, noise_ ? &waveform_noise : nullptr, pulses, windows);
         for (const DetectedPulse& p : pulses) {
             DetectedReturn r{};
             r.range_m = p.range_m;

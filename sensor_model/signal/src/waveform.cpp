@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <map>
+#include <mutex>
 #include <numbers>
 
 #include <unsupported/Eigen/FFT>
@@ -21,8 +23,15 @@ constexpr std::size_t kShortWindow = 2048;  // bins (38 m): built whole, cheaper
 
 WaveformReceiver::WaveformReceiver(const ApdReceiver& apd, double pulse_fwhm_s, double bin_s)
     : apd_(apd), pulse_(PulseShape::of(pulse_fwhm_s)), fwhm_s_(pulse_fwhm_s), bin_s_(bin_s) {
-    RandomSequence bank_draws(0, RandomStream::waveform_noise, 0, 0xFFFFFFFFu);
-    noise_bank_ = band_limited_noise(kNoiseBank, bank_draws);
+    static std::mutex banks_mutex;
+    static std::map<double, std::shared_ptr<const std::vector<double>>> banks;  // by bandwidth x bin
+    const std::lock_guard lock(banks_mutex);
+    auto& bank = banks[apd_.bandwidth_hz() * bin_s_];
+    if (!bank) {
+        RandomSequence bank_draws(0, RandomStream::waveform_noise, 0, 0xFFFFFFFFu);
+        bank = std::make_shared<const std::vector<double>>(band_limited_noise(kNoiseBank, bank_draws));
+    }
+    noise_bank_ = bank;
 }
 
 PulseShape WaveformReceiver::shape_of(const Echo& e) const {
@@ -59,7 +68,8 @@ std::vector<DetectedPulse> WaveformReceiver::detect(std::span<const Echo> echoes
     return pulses;
 }
 
-void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& pulses) const {
+void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& pulses,
+                              std::vector<WaveformWindow>* windows) const {
     const double to_time = 2.0 / kSpeedOfLight_mps;
     // Each echo's kept pulse: kWindowSigmas of its own width each side of its centre.
     struct Reach {
@@ -103,11 +113,11 @@ void WaveformReceiver::detect(std::span<const Echo> echoes, RandomSequence* nois
         const auto bins = static_cast<std::size_t>(std::ceil((end - t0) / bin_s_)) + 1;
         // A long window (a grazing footprint's) is built only where pulses can be detected.
         if (bins <= kShortWindow) {
-            detect_window(window, t0, bins, noise, pulses);
+            detect_window(window, t0, bins, noise, pulses, windows);
         } else {
             for (const LiveSpan& live : live_spans(window, t0, bins, noise != nullptr))
                 detect_window(std::span(window).subspan(live.first_echo, live.echoes), t0 + live.first_bin * bin_s_, live.bins, noise,
-                              pulses);
+                              pulses, windows);
         }
         first = last;
     }
@@ -163,7 +173,7 @@ std::vector<WaveformReceiver::LiveSpan> WaveformReceiver::live_spans(std::span<c
     // a noise-free one would be below the release level there, and a noisy one crosses the
     // threshold at the rate of noise alone, which the false-alarm process already draws.
     auto reach = [&](double power_w) { return reach_a(power_w, noisy); };
-    const double release = 0.5 * apd_.threshold_a(), threshold = apd_.threshold_a();
+    const double release = release_a(), threshold = apd_.threshold_a();
     std::vector<LiveSpan> spans;
     for (std::size_t c = 0; c < coarse;) {
         if (reach(bound[c]) <= release) {
@@ -206,7 +216,7 @@ struct WaveformReceiver::Window {
 };
 
 void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
-                                     std::vector<DetectedPulse>& out) const {
+                                     std::vector<DetectedPulse>& out, std::vector<WaveformWindow>* windows) const {
     // Per-thread scratch: a beam's windows are a few hundred bins.
     thread_local std::vector<double> power, n, y, contribution;
     // Each echo's pulse shape, found once for the sum and the attribution of peaks below.
@@ -217,7 +227,7 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     n.assign(bins, 0.0);
     if (noise && bins <= kNoiseBank / 8) {
         const auto start = static_cast<std::size_t>(noise->uniform() * static_cast<double>(kNoiseBank - bins));
-        std::copy_n(noise_bank_.begin() + static_cast<std::ptrdiff_t>(start), bins, n.begin());
+        std::copy_n(noise_bank_->begin() + static_cast<std::ptrdiff_t>(start), bins, n.begin());
     } else if (noise) {
         n = band_limited_noise(bins, *noise);  // a window longer than the bank can spare
     }
@@ -226,6 +236,11 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     const double saturation = apd_.saturation_a();
     for (std::size_t k = 0; k < bins; ++k)
         y[k] = std::min(amps_per_watt * power[k] + (noise ? apd_.noise_a(power[k]) * n[k] : 0.0), saturation);
+    if (windows) {
+        WaveformWindow& recorded = windows->emplace_back();
+        recorded.start_s = t0_s;
+        recorded.samples_a.assign(y.begin(), y.end());
+    }
 
     const double threshold = apd_.threshold_a();
     const double floor_noise = apd_.noise_floor_a();
@@ -236,10 +251,9 @@ void WaveformReceiver::detect_window(std::span<const Echo> echoes, double t0_s, 
     // The 50 % crossing of a pulse is searched back no further than where the previous one ended.
     std::size_t searched_to = 0;
     // Excursions: one starts when the signal crosses the threshold and ends when it falls below
-    // half of it (hysteresis, so that noise on a slow edge, such as a cloud's, does not re-trigger
-    // at every wiggle). Inside one, a dip below half its peak followed by a rise to more than twice
+    // the release level (release_a). Inside one, a dip below half its peak followed by a rise to more than twice
     // the dip (and 3 noise sigmas above it) starts a new pulse.
-    const double release = 0.5 * threshold;
+    const double release = release_a();
     bool inside = false, in_valley = false;
     std::size_t peak = 0, valley = 0;
     for (std::size_t k = 0; k < bins; ++k) {

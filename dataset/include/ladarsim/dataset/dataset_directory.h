@@ -17,7 +17,7 @@
 namespace ladarsim {
 
 /// Whether a directory entry named `name` at the top of a dataset is one a render writes there:
-/// frames/, manifest.json, ground_truth.json, background.pcd.
+/// frames/, manifest.json, ground_truth.json, background.pcd, waveforms/ (render.waveforms).
 bool is_dataset_entry(const std::string& name);
 
 /// The file in every directory ladarsim writes (a dataset, an export) listing the entries at its
@@ -34,9 +34,14 @@ std::optional<std::vector<std::string>> owned_entries(const std::filesystem::pat
 /// directory's owned list), unless `force`.
 void check_replaceable(const std::filesystem::path& file, const std::string& field, bool force);
 
-/// After writing `file`: adds it to its directory's owned list, when that directory is
-/// ladarsim's, so that a later run may replace it and a new render deletes it as stale.
+/// After writing `file`: adds it to its directory's owned list, so that a later run may replace
+/// it (and, in a dataset, a new render deletes it as stale). In a directory of the user's the list
+/// is made, naming only that file: such a directory is still no output of checked_output_dir's.
 void record_owned(const std::filesystem::path& file);
+
+/// The same for entries of `dir` a run is about to write (a campaign's): listed first, so that a
+/// run stopped half-way leaves every entry of its own listed.
+void record_owned(const std::filesystem::path& dir, const std::vector<std::string>& names);
 
 /// How ladarsim writes a directory of its own (a dataset, an export), so that a new run replaces
 /// what the previous one wrote (its owned list) and keeps the user's files.
@@ -50,16 +55,17 @@ struct OutputLayout {
     std::function<bool(const std::string& relative_path)> is_own_inside;
 };
 
-/// A dataset's layout: own entries is_dataset_entry's, frames/ holding only frame files.
+/// A dataset's layout: own entries is_dataset_entry's, frames/ holding only frame files,
+/// waveforms/ only NNNNNN.h5.
 const OutputLayout& dataset_layout();
 
 /// The output directory as an absolute path without a trailing separator (a symbolic link
 /// resolved to its target), checked before anything is written: it may be absent, empty, or what
-/// a previous run wrote (with an owned list; the entries it lists are replaced), never some other
-/// directory a user would lose, one where a file of the user's has a name the run writes or sits
-/// inside ladarsim's own directories, a link to nothing, or a mount point (the output is staged
-/// beside it, on its parent's file system, and could not be moved in). Throws InputError naming
-/// it and "--out" otherwise.
+/// a previous run wrote (with an owned list naming one of the layout's entries; the entries it
+/// lists are replaced), never some other directory a user would lose, one where a file of the
+/// user's has a name the run writes or sits inside ladarsim's own directories, a link to nothing,
+/// or a mount point (the output is staged beside it, on its parent's file system, and could not be
+/// moved in). Throws InputError naming it and "--out" otherwise.
 std::filesystem::path checked_output_dir(const std::filesystem::path& requested, const OutputLayout& layout);
 
 /// checked_output_dir for a dataset.

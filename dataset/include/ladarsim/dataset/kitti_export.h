@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "ladarsim/dataset/dataset_directory.h"
+#include "ladarsim/dataset/intensity_scale.h"
 #include "ladarsim/dataset/frame.h"
 
 namespace ladarsim {
@@ -83,11 +84,6 @@ struct KittiExportOptions {
     bool exact_boxes = false;
 };
 
-struct KittiExportProgress {
-    std::function<void(int done, int total)> intensity_scanned;  ///< first pass, per frame read
-    std::function<void(int done, int total)> frame_written;      ///< second pass, per frame written
-};
-
 struct KittiExportSummary {
     std::filesystem::path out;       ///< the export directory as written (see checked_output_dir)
     int frames = 0;
@@ -104,7 +100,7 @@ struct KittiExportSummary {
 /// InputError naming the file and the problem for a missing directory, manifest or frames, a
 /// malformed file, or ground truth without one of the frames.
 KittiExportSummary export_kitti(const std::filesystem::path& dataset_dir, const std::filesystem::path& out_dir,
-                                const KittiExportOptions& options = {}, const KittiExportProgress& progress = {});
+                                const KittiExportOptions& options = {}, const ExportProgress& progress = {});
 
 /// One dataset of an export of several, and the split whose ImageSets file lists its frames.
 struct KittiSource {
@@ -120,6 +116,6 @@ struct KittiSource {
 /// single-dataset export does.
 KittiExportSummary export_kitti(const std::filesystem::path& origin, const std::vector<KittiSource>& sources,
                                 const std::filesystem::path& out_dir, const KittiExportOptions& options = {},
-                                const KittiExportProgress& progress = {});
+                                const ExportProgress& progress = {});
 
 }  // namespace ladarsim

@@ -1,6 +1,6 @@
 #pragma once
-// UDP datagrams out of a libpcap capture: what every recorded-lidar decoder reads before its own
-// packet format begins (no Debian library reads pcap without pulling in a capture stack).
+// UDP datagrams out of a libpcap or pcapng capture: what every recorded-lidar decoder reads before
+// its own packet format begins (no Debian library reads pcap without pulling in a capture stack).
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -17,13 +17,14 @@ struct UdpDatagram {
     std::span<const unsigned char> payload;  ///< valid only while the visitor runs
 };
 
-/// Calls `visit` for every UDP datagram over IPv4 in a little-endian, microsecond libpcap capture
-/// of Ethernet frames, in capture order. A datagram larger than the link's MTU arrives as IPv4
-/// fragments: it is reassembled and visited when its last missing fragment arrives; one that never
-/// completes is not visited. Other traffic, and packets whose IPv4 header claims more than the wire
-/// carried, are skipped. Throws InputError naming the file (and the record) for anything that is
-/// not such a capture, or that the capture's snap length cut short; an InputError the visitor
-/// throws passes through.
+/// Calls `visit` for every UDP datagram over IPv4 in a capture of Ethernet frames, in capture
+/// order: libpcap (either byte order, micro- or nanosecond time stamps) or pcapng (Wireshark's
+/// default; dataset/src/capture_file.h says what of it is read). A datagram larger than the link's
+/// MTU arrives as IPv4 fragments: it is reassembled and visited when its last missing fragment
+/// arrives; one that never completes is not visited. Other traffic, and packets whose IPv4 header
+/// claims more than the wire carried, are skipped. Throws InputError naming the file (and the
+/// record) for anything that is not such a capture, or that the capture's snap length cut short;
+/// an InputError the visitor throws passes through.
 void for_each_udp_datagram(const std::filesystem::path& file, const std::function<void(const UdpDatagram&)>& visit);
 
 /// The T at `offset` of a payload, in the little-endian order the lidars send (and this host uses).

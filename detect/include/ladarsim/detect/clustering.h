@@ -25,6 +25,11 @@ std::vector<Cluster> rbnn(const Points& points, double radius_m);
 /// radius to its elevation field.
 double vrbnn_radius_m(double lambda, const SensorGeometry& sensor, double range_m, double bias_m);
 
+/// The range V-RBNN's radius is set at when no target is known: the 90th percentile of the
+/// points' ranges (those of the farthest targets). A radius below a far target's beam pitch splits
+/// it; one above a near target's only joins what lies within it. 0 without points.
+double acquisition_range_m(const Points& points);
+
 /// The lambda whose V-RBNN radius grows by 1.2 of the sensor's coarser beam pitch per metre of
 /// range: returns lie on beam axes, so a target's neighbouring returns are a pitch apart and a
 /// smaller radius fragments it (Algorithm 1's lambda = 7 gives 2 cm at 600 m against a 26 cm
@@ -34,6 +39,24 @@ double default_lambda(const SensorGeometry& sensor);
 /// Keeps the points with at least `min_neighbours` other points within `radius_m` (PCL's
 /// RadiusOutlierRemoval; with Debian's PCL 1.13 the query point itself is not counted).
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours);
+
+/// Outlier removal that asks neighbours to agree in range: keeps the points with at least
+/// `min_neighbours` other points within `radius_m` whose ranges (from the sensor origin) differ
+/// from theirs by at most `tolerance_m`. A surface's neighbouring beams report one range (a small
+/// target's to a few centimetres: one footprint mixes its facets); a cloud's or fog's backscatter
+/// comes from any depth along each beam, so its returns rarely have such neighbours however dense
+/// the volume. A drone inside a cloud keeps its returns, and the volume's around it fall away
+/// before clustering could chain them to it.
+Points remove_incoherent(const Points& points, double radius_m, double tolerance_m, int min_neighbours);
+
+/// A cluster without the scan lines that hold few of its returns: a small target is seen by every
+/// beam of a line whose footprint reaches it (about a footprint's width over the azimuth pitch:
+/// 16 beams for the paper's raster at any range), while returns of a cloud that happen to agree
+/// with it in range and join it from another line come one or two a line, and would move its box
+/// by half a line pitch. Lines are told apart by elevation (sensor frame): a gap of more than half
+/// `line_pitch_rad` starts a new one. Keeps the lines holding at least `min_fraction` of the
+/// fullest line's returns.
+Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction);
 
 /// Drops clusters whose box diagonal exceeds `max_diagonal_m` (Algorithm 1: 1 m) plus
 /// `beam_spread_rad` times their range, and those with fewer than `min_points`. Returns lie on
@@ -50,6 +73,13 @@ std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max
 /// `min_fraction` of their returns within `tolerance_m` of their median range (ranges from the
 /// sensor origin).
 std::vector<Cluster> range_coherent(std::vector<Cluster> clusters, double tolerance_m, double min_fraction);
+
+/// Clutter inside a volume: keeps the clusters that stand clear of the other returns of the frame,
+/// with at most `max_ratio` times their own returns among `all` (every return the clustering saw,
+/// outliers included) inside their box grown by `margin_m`. A target in clear air has nothing
+/// about it; a clump that clustering found inside a cloud's or fog's backscatter is surrounded by
+/// more of it, at every depth.
+std::vector<Cluster> standing_clear(std::vector<Cluster> clusters, const Points& all, double margin_m, double max_ratio);
 
 /// Each cluster cut down to its coherent core: the most returns whose ranges lie within a window
 /// of 2 x `tolerance_m` (a volume's returns that clustering chained to a target fall away), kept

@@ -49,6 +49,9 @@ struct DetectorConfig {
     /// backscatter spread over their whole extent in range.
     double range_coherence_m = 0.1;
     double coherent_fraction = 0.9;
+    /// The cued target's tracker drops the scan lines of a core holding fewer than this fraction
+    /// of its fullest line's returns (without_sparse_lines), while range_coherence_m > 0.
+    double sparse_line_fraction = 0.25;
     /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000.
     /// Read as millimetres that is 1 m between frames, 20 m/s at 20 Hz, slower than the paper's own
     /// fast targets. Here: the chosen cluster's range may differ from the FIR prediction's by at

@@ -17,7 +17,6 @@
 
 namespace ladarsim::sensor_model {
 
-class SubRayLattice;
 class TargetLattice;
 
 /// Chooses, beam by beam, among strategies (footprint_strategy.h):
@@ -33,9 +32,9 @@ class TargetLattice;
 ///    refined in cells of equal energy, and a footprint over a recorded map takes brute force.
 class FootprintIntegrator {
 public:
-    /// `objects`: the scene's, whose meshes give targets' seeds.
+    /// `objects`: the scene's, whose meshes give targets' seeds; `map`: its recorded map (null: none).
     FootprintIntegrator(const FootprintSettings& settings, const Sensor& sensor, const std::vector<scene::SceneObject>& objects,
-                        const raytrace::TracedScene& traced, const EchoRadiometry& radiometry);
+                        const scene::BackgroundMap* map, const raytrace::TracedScene& traced, const EchoRadiometry& radiometry);
     ~FootprintIntegrator();
     FootprintIntegrator(const FootprintIntegrator&) = delete;
     FootprintIntegrator& operator=(const FootprintIntegrator&) = delete;
@@ -47,9 +46,6 @@ public:
     /// Sub-rays a footprint over a recorded map (or a target's outline) takes at this tolerance.
     std::size_t map_samples() const;
 
-    /// Where a footprint over a recorded map takes brute force (without media), it takes the
-    /// lattice's shared sub-rays instead of tracing its own (null: its own). Set before rendering.
-    void share_sub_rays(const SubRayLattice* lattice);
     /// Where a lone target is sampled (without media), its line's shared sub-rays over it instead
     /// of its own where the lattice holds it (null: its own). Set before rendering.
     void share_target_sub_rays(const TargetLattice* lattice);

@@ -1,5 +1,5 @@
 #pragma once
-// One sub-ray of a lattice shared by the footprints that overlap it (SubRayLattice, TargetLattice).
+// One sub-ray of a lattice shared by the footprints that overlap it (TargetLattice).
 #include <cstdint>
 #include <optional>
 

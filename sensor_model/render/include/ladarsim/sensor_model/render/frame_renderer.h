@@ -2,6 +2,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "ladarsim/dataset/frame.h"
@@ -13,7 +14,6 @@
 #include "ladarsim/sensor_model/sensor/scan_pattern.h"
 #include "ladarsim/sensor_model/sensor/gimbal.h"
 #include "ladarsim/sensor_model/render/scenario.h"
-#include "ladarsim/sensor_model/footprint/sub_ray_lattice.h"
 #include "ladarsim/sensor_model/footprint/target_lattice.h"
 
 namespace ladarsim::sensor_model {
@@ -44,6 +44,9 @@ public:
     const ScanPattern& raster() const { return raster_; }
     /// Rays traced for the last frame rendered (probes and sub-rays): the cost of its accuracy.
     std::uint64_t rays_last_frame() const { return rays_last_frame_; }
+    /// The last frame's full waveforms, by (row, column) and then range, when the scenario asks
+    /// for them (render.waveforms); empty otherwise. Taken: moved out (megabytes a frame), not copied.
+    FrameWaveforms take_waveforms() { return std::move(waveforms_last_frame_); }
     /// The scene as traced (for benchmarks: record its rays, trace them again raw).
     raytrace::TracedScene& traced() { return traced_; }
 
@@ -64,7 +67,9 @@ private:
     std::uint64_t aim_row(int row, GimbalPointing pointing, double frame_start_s);
     /// Pass 2: the returns of steps [first_step, end_step) of one raster line, in firing order; adds
     /// the rays traced to `rays`.
-    std::vector<Return> trace_steps(int row, int first_step, int end_step, std::uint64_t frame, std::uint64_t& rays) const;
+    /// With `windows` set, also appends the beams' sampled waveforms to it.
+    std::vector<Return> trace_steps(int row, int first_step, int end_step, std::uint64_t frame, std::uint64_t& rays,
+                                    std::vector<WaveformWindow>* windows) const;
     std::vector<GroundTruthObject> ground_truth(double time_s, const std::vector<Return>& returns) const;
     GimbalPointing cue_pointing(double time_s) const;
 
@@ -74,8 +79,6 @@ private:
     BeamReceiver receiver_;
     EchoRadiometry radiometry_;
     FootprintIntegrator integrator_;
-    /// Sub-rays shared by overlapping footprints over a recorded map (null where they do not pay).
-    std::unique_ptr<SubRayLattice> lattice_;
     /// Sub-rays over a lone target shared by the footprints of a line (null where they would not
     /// overlap).
     std::unique_ptr<TargetLattice> target_lattice_;
@@ -100,6 +103,7 @@ private:
     std::vector<Eigen::Vector3d> extra_direction_;
     std::vector<ProbeHit> axis_hit_, extra_hit_;
     std::uint64_t rays_last_frame_ = 0;
+    FrameWaveforms waveforms_last_frame_;
 };
 
 /// Centre of an object's model bounds in the world at `time_s`.

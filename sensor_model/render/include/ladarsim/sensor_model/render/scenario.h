@@ -40,9 +40,16 @@ struct RenderSettings {
     /// 0: adaptive footprints to `footprint_tolerance`; N > 0: N stratified sub-rays per beam
     /// (brute force, the reference the adaptive integration is checked against).
     int footprint_samples = 0;
+    /// With footprint_samples > 0, a footprint over a recorded map is integrated along this many
+    /// lines instead (the map's converged reference, its rays for other objects spread over the
+    /// lines); 0: the sub-rays there too.
+    int footprint_map_lines = 0;
     /// Relative error allowed on each object's echo energy per beam (adaptive footprints).
     double footprint_tolerance = 0.05;
     double footprint_truncation = 1.5;   ///< sub-rays lie within this many 1/e^2 radii
+    /// Write each frame's full waveforms (waveforms/NNNNNN.h5): every beam is then detected in its
+    /// sampled waveform, one meeting a single surface too (see BeamReceiver::receive).
+    bool waveforms = false;
 };
 
 /// Everything one run needs, read from a scenario file: the single source of truth of a dataset.
@@ -60,12 +67,13 @@ struct Scenario {
 /// Reads and validates a scenario file. Throws InputError naming the file, the field and the problem.
 Scenario load_scenario(const std::filesystem::path& file);
 
-/// The name a scenario held in memory goes by, in place of a file name.
-inline constexpr const char* kInMemoryScenarioName = "<dict>";
+/// The name a scenario held in memory goes by, in place of a file name: Python's own term for what
+/// is not a file ("<string>", "<stdin>"), and the argument's, `scenario`.
+inline constexpr const char* kInMemoryScenarioName = "<scenario dict>";
 
 /// The same for a scenario document held in memory (from Python): `extends` and relative paths
-/// are resolved against `base_dir` (empty: the working directory), as they would be for a file
-/// in that folder. The scenario's `file`, and the file errors name, is `base_dir/<dict>`.
+/// are resolved against `base_dir`, as they would be for a file in that folder. The scenario's
+/// `file`, and the file errors name, is `base_dir/<scenario dict>`.
 Scenario load_scenario(const nlohmann::json& document, const std::filesystem::path& base_dir);
 
 }  // namespace ladarsim::sensor_model

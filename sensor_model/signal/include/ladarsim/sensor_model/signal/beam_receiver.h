@@ -48,8 +48,13 @@ public:
     /// Detected returns of one beam, sorted by reported range, filtered by `reported_returns`.
     std::vector<DetectedReturn> receive(std::vector<BeamSurface> surfaces, const BeamKey& key) const;
     /// The same into `returns` (cleared first), working on `surfaces` in place: a renderer reuses
-    /// both from beam to beam and allocates nothing once they are warm.
-    void receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns) const;
+    /// both from beam to beam and allocates nothing once they are warm. With `windows` set, every
+    /// beam is detected in its sampled waveform, a beam meeting one surface too (not by the closed
+    /// form, which draws its noise differently), and the windows searched are appended to it
+    /// (start_s and samples_a): the returns other than false alarms are what the discriminator
+    /// found in them. False alarms are drawn for the whole range gate, outside any window.
+    void receive(std::vector<BeamSurface>& surfaces, const BeamKey& key, std::vector<DetectedReturn>& returns,
+                 std::vector<WaveformWindow>* windows = nullptr) const;
 
     const ApdReceiver& apd() const { return apd_; }
     const WaveformReceiver& waveform() const { return waveform_; }

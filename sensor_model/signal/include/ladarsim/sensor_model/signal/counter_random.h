@@ -15,8 +15,8 @@ enum class RandomStream : std::uint32_t {
     waveform_noise = 4,   ///< noise samples of built waveforms
     false_alarms = 5,
     volume_scatter = 6,   ///< free paths inside fog and cloud
-    lattice_jitter = 7,   ///< a frame's shared sub-rays (SubRayLattice), keyed by their place in it
-    lattice_choice = 8,   ///< which of them a beam takes
+    // 7 and 8 were the shared sub-rays over a recorded map, before its footprints were integrated
+    // along lines: left unused, so that no stream changes number.
     target_lattice_jitter = 9,  ///< a line's shared sub-rays over a target (TargetLattice)
 };
 

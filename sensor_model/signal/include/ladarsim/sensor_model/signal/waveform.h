@@ -4,8 +4,10 @@
 // and peaks are found the way the sensor's discriminator would.
 #include <cstdint>
 #include <span>
+#include <memory>
 #include <vector>
 
+#include "ladarsim/dataset/waveform_file.h"
 #include "ladarsim/sensor_model/signal/apd_receiver.h"
 #include "ladarsim/sensor_model/signal/counter_random.h"
 
@@ -47,14 +49,20 @@ public:
     /// everything else a beam does; two windows of a few hundred samples overlap with probability
     /// below 1 %).
     std::vector<DetectedPulse> detect(std::span<const Echo> echoes, RandomSequence* noise) const;
-    /// The same, appending to `out` (per-thread scratch buffers: no allocation once warm).
-    void detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& out) const;
+    /// The same, appending to `out` (per-thread scratch buffers: no allocation once warm), and
+    /// with `windows` set each window's sampled current (start_s and samples_a) appended to it:
+    /// the waveform the pulses were found in, sample for sample.
+    void detect(std::span<const Echo> echoes, RandomSequence* noise, std::vector<DetectedPulse>& out,
+                std::vector<WaveformWindow>* windows = nullptr) const;
 
     /// `n` samples of zero-mean, unit-variance Gaussian noise whose spectrum is flat up to the
     /// receiver's bandwidth and zero above (spectral synthesis with one inverse FFT).
     std::vector<double> band_limited_noise(std::size_t n, RandomSequence& rng) const;
 
     double bin_s() const { return bin_s_; }
+    /// Where a pulse's excursion ends: half the threshold (hysteresis, so that noise on a slow
+    /// edge, such as a cloud's, does not re-trigger at every wiggle).
+    double release_a() const { return 0.5 * apd_.threshold_a(); }
     const PulseShape& pulse() const { return pulse_; }
 
 private:
@@ -71,7 +79,7 @@ private:
     double reach_a(double power_w, bool noisy) const;
     PulseShape shape_of(const Echo& e) const;
     void detect_window(std::span<const Echo> echoes, double t0_s, std::size_t bins, RandomSequence* noise,
-                       std::vector<DetectedPulse>& out) const;
+                       std::vector<DetectedPulse>& out, std::vector<WaveformWindow>* windows) const;
     /// One window's sampled waveform and what made it (defined in the .cpp).
     struct Window;
     /// The noise-free power the echoes put in each bin (`power`, of `bins`).
@@ -85,7 +93,10 @@ private:
     PulseShape pulse_;
     double fwhm_s_;
     double bin_s_;
-    std::vector<double> noise_bank_;
+    /// Shared by every receiver of the same bandwidth and sampling in the process (drawn from a
+    /// fixed stream): a run builds two receivers, a campaign hundreds, and drawing it took half the
+    /// time of a one-frame run.
+    std::shared_ptr<const std::vector<double>> noise_bank_;
 };
 
 }  // namespace ladarsim::sensor_model
