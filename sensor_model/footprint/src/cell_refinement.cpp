@@ -186,32 +186,12 @@ bool CellRefinement::first_cells_shortcut(const BeamSetting& beam, const Footpri
 bool CellRefinement::split_marked(const BeamSetting& beam, RefinementRegion& r) const {
     const bool jitter = context_.settings.jitter;
     const Footprint& footprint = context_.shape.footprint();
-    auto axes_of = [](const RefinementRegion::Node& n) {
-        return static_cast<std::uint8_t>(n.want & ((n.splits_x < kMaxSplits ? 1 : 0) | (n.splits_y < kMaxSplits ? 2 : 0)));
-    };
-    thread_local std::vector<std::size_t> marked;
-    marked.clear();
-    std::size_t grown = r.nodes.size();  // the nodes once every marked cell before this one split
-    bool all_fit = true;
-    for (std::size_t k = 0; k < r.nodes.size(); ++k) {
-        const RefinementRegion::Node& n = r.nodes[k];
-        const std::uint8_t axes = axes_of(n);
-        if (!n.leaf() || !n.urgent || axes == 0) continue;
-        all_fit = all_fit && grown + 4 <= r.max_samples;
-        grown += axes == 3 ? 4 : 2;
-        marked.push_back(k);
-    }
-    // Where the budget cannot split them all, the cells that may carry most of an unsettled
-    // return's allowed error go first: in the order they are stored, a bright bird's many edge
-    // cells spent the budget before the cells of a dim drone behind it (whose error allowance is
-    // its threshold's, far smaller) could split.
-    if (!all_fit)
-        std::stable_sort(marked.begin(), marked.end(), [&](std::size_t a, std::size_t b) { return r.nodes[a].need > r.nodes[b].need; });
     bool any = false;
-    for (const std::size_t k : marked) {
-        if (r.nodes.size() + 4 > r.max_samples) break;
+    const std::size_t leaves = r.nodes.size();
+    for (std::size_t k = 0; k < leaves && r.nodes.size() + 4 <= r.max_samples; ++k) {
         const RefinementRegion::Node parent = r.nodes[k];
-        const std::uint8_t axes = axes_of(parent);
+        const std::uint8_t axes = parent.want & ((parent.splits_x < kMaxSplits ? 1 : 0) | (parent.splits_y < kMaxSplits ? 2 : 0));
+        if (!parent.leaf() || !parent.urgent || axes == 0) continue;
         any = true;
         r.nodes[k].first_child = static_cast<std::int32_t>(r.nodes.size());
         r.nodes[k].split = axes;

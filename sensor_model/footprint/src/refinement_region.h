@@ -65,10 +65,6 @@ struct RefinementRegion {
         Seen seen;
         std::uint32_t volume_first = 0, volume_count = 0;     ///< its echoes in `volume_echoes`
         std::array<std::int32_t, 4> touches{-1, -1, -1, -1};  ///< returns its cell may hold a part of
-        /// For each of `touches`: the largest energy its cell may move that return by, as a share of
-        /// the error the return may carry (kConfidenceSigmas standard deviations within tolerance).
-        std::array<double, 4> touch_need{};
-        double need = 0.0;            ///< the largest share of an unsettled return's error it may carry
         std::int32_t surface = -1;    ///< the return its surface echo went to
         std::int32_t adopt = -1;      ///< a probe inside it that disagrees: in `probes`
         bool leaf() const { return first_child < 0; }

@@ -90,8 +90,6 @@ void SettlingPass::mark_leaves(RefinementRegion& r, const std::vector<SurfaceEch
         n.want = 0;
         n.adopt = -1;
         n.touches = {-1, -1, -1, -1};
-        n.touch_need = {};
-        n.need = 0.0;
         n.surface = -1;
     }
     for (std::size_t k = 0; k < echoes.size(); ++k) {
@@ -106,22 +104,17 @@ std::int32_t SettlingPass::volume_return(std::uint32_t object_id) const {
     return -1;
 }
 
-double SettlingPass::error_share(std::size_t g, double deviation_j) const {
-    return kConfidenceSigmas * deviation_j / (context_->settings.tolerance * std::max(energy_[g], threshold_[g]));
-}
-
 void SettlingPass::add_uncertainty(RefinementRegion::Node& n, std::int32_t g, double energy_j) {
     // Adds (w e / 2)^2 to the variance of the return involved.
     if (g < 0 || !(energy_j > 0.0)) return;
     variance_[static_cast<std::size_t>(g)] += 0.25 * energy_j * energy_j;
     n.boundary = true;
-    const double share = error_share(static_cast<std::size_t>(g), 0.5 * energy_j);
-    for (std::size_t k = 0; k < n.touches.size(); ++k) {
-        std::int32_t& t = n.touches[k];
-        if (t >= 0 && t != g) continue;
-        t = g;
-        n.touch_need[k] = std::max(n.touch_need[k], share);
-        break;
+    for (std::int32_t& t : n.touches) {
+        if (t == g) break;
+        if (t < 0) {
+            t = g;
+            break;
+        }
     }
 }
 
@@ -241,14 +234,9 @@ void SettlingPass::compare_witnesses(RefinementRegion& r, std::span<const Probe*
             r.probes.push_back({pu, pv, probe});
         }
         // Unseen: settled only if even a whole cell of it could not be detected.
-        if (probe.hit && probe_surface < 0) {
-            const double share =
-                kConfidenceSigmas * 0.5 * n.weight * r.scale * probe.echo.energy_j / (context_->settings.tolerance * context_->threshold_j);
-            if (share > 1.0) {
-                n.urgent = true;
-                n.need = std::max(n.need, share);
-            }
-        }
+        if (probe.hit && probe_surface < 0 &&
+            kConfidenceSigmas * 0.5 * n.weight * r.scale * probe.echo.energy_j > context_->settings.tolerance * context_->threshold_j)
+            n.urgent = true;
     }
 }
 
@@ -273,18 +261,11 @@ bool SettlingPass::decide(RefinementRegion& r) {
     bool refinable = false;
     for (RefinementRegion::Node& n : r.nodes) {
         if (!n.leaf()) continue;
-        for (std::size_t k = 0; k < n.touches.size(); ++k) {
-            const std::int32_t t = n.touches[k];
-            if (t < 0 || !unsettled_[static_cast<std::size_t>(t)]) continue;
-            n.urgent = true;
-            n.need = std::max(n.need, n.touch_need[k]);
-        }
+        for (const std::int32_t t : n.touches)
+            if (t >= 0 && unsettled_[static_cast<std::size_t>(t)]) n.urgent = true;
         if (n.surface >= 0 && undecided_[static_cast<std::size_t>(n.surface)]) {
             n.urgent = true;
             n.want |= 3;
-            // Its whole echo may be what tips the return over the threshold or under it.
-            const auto g = static_cast<std::size_t>(n.surface);
-            n.need = std::max(n.need, error_share(g, 0.5 * n.weight * r.scale * n.seen.echo.energy_j));
         }
         const std::uint8_t axes = n.want & ((n.splits_x < kMaxSplits ? 1 : 0) | (n.splits_y < kMaxSplits ? 2 : 0));
         refinable = refinable || (n.urgent && axes != 0);

@@ -44,8 +44,6 @@ private:
     bool decide(RefinementRegion& r);
 
     void add_uncertainty(RefinementRegion::Node& n, std::int32_t g, double energy_j);
-    /// How much of return g's allowed error a deviation of its energy by `deviation_j` is (1: all of it).
-    double error_share(std::size_t g, double deviation_j) const;
     /// Cell `a` may hold the other's surface (and media), and its own may be the other's.
     void involve(const RefinementRegion& r, RefinementRegion::Node& a, const Seen& other, std::int32_t other_surface,
                  std::uint32_t other_volume_first, std::uint32_t other_volume_count);
