@@ -29,6 +29,7 @@ void add_import_ouster_command(CLI::App& app, int& exit_code);
 void add_export_kitti_command(CLI::App& app, int& exit_code);
 void add_export_las_command(CLI::App& app, int& exit_code);
 void add_make_assets_command(CLI::App& app, int& exit_code);
+void add_train_classifier_command(CLI::App& app, int& exit_code);
 void add_preview_command(CLI::App& app, int& exit_code);
 void add_view_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);

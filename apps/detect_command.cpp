@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <spdlog/spdlog.h>
@@ -16,7 +17,7 @@ namespace ladarsim::apps {
 namespace {
 
 struct DetectCommand {
-    std::string dataset_dir, detections_file;
+    std::string dataset_dir, detections_file, classifier_file;
     DetectorOptions options;
     bool force = false;
 
@@ -28,6 +29,8 @@ struct DetectCommand {
         options.add(*detect_cmd);
         detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
         detect_cmd->add_flag("--force", force, "Replace the --out file even if ladarsim did not write it");
+        detect_cmd->add_option("--classifier", classifier_file,
+                               "Track classifier (`ladarsim train-classifier`): each track gets a class and class_confidence");
         return detect_cmd;
     }
 
@@ -43,7 +46,10 @@ struct DetectCommand {
                          "return is a candidate", dataset_dir);
         else if (sequence.background.empty())
             spdlog::info("{}: background.pcd has 0 points (nothing static in view): nothing to subtract", dataset_dir);
-        const nlohmann::json out = detect::detection_report(sequence, options.config(), options.target());
+        std::optional<detect::TrackClassifier> classifier;
+        if (!classifier_file.empty()) classifier.emplace(detect::TrackClassifier::load(classifier_file));
+        const nlohmann::json out =
+            detect::detection_report(sequence, options.config(), options.target(), classifier ? &*classifier : nullptr);
         const auto& detections = out["detections"];
         int found = 0, predicted = 0;
         for (const auto& d : detections) {

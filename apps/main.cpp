@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
     apps::add_export_kitti_command(app, exit_code);
     apps::add_export_las_command(app, exit_code);
     apps::add_make_assets_command(app, exit_code);
+    apps::add_train_classifier_command(app, exit_code);
     apps::add_preview_command(app, exit_code);
     apps::add_view_command(app, exit_code);
     apps::add_bench_command(app, exit_code);

@@ -27,7 +27,8 @@ std::string measures_in_words(const nlohmann::json& measures) {
                                                              {"l2", "L2"},
                                                              {"mot", "CLEAR MOT"},
                                                              {"ap", "centre-distance AP"},
-                                                             {"eao", "EAO (supervised, VOT resets)"}};
+                                                             {"eao", "EAO (supervised, VOT resets)"},
+                                                             {"classification", "track classes"}};
     std::string out;
     for (const auto& m : measures) out += (out.empty() ? "" : ", ") + words.at(m.get<std::string>());
     return out;
@@ -63,6 +64,14 @@ void report_scores(const nlohmann::json& scores, const std::string& json_path, c
                     tracking["misses"].get<int>(), tracking["false_positives"].get<int>(),
                     figure(scores["ap_centre"], "", "none (no track)").c_str(),
                     figure(scores["ap_centre_3d"], "", "none").c_str());
+    }
+    if (scores.contains("classification")) {
+        const auto& c = scores["classification"];
+        const auto& drone = c["per_class"]["drone"];
+        std::printf("  track classes (%d tracks): drone precision %s, recall %s; %d bird tracks called drones; class settled after %.1f "
+                    "frames on average\n",
+                    c["tracks"].get<int>(), figure(drone["precision"], "", "none").c_str(), figure(drone["recall"], "", "none").c_str(),
+                    c["confusion"]["bird"]["drone"].get<int>(), c["frames_to_settle"]["mean"].get<double>());
     }
     if (scores.contains("eao")) {
         const auto& interval = scores["eao_interval"];

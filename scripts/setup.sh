@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libspdlog-dev libtbb-dev
-  libopenexr-dev libhdf5-dev libcli11-dev librandom123-dev libpcl-dev catch2 libopenmpi-dev openmpi-bin
+  libopenexr-dev libhdf5-dev libcli11-dev librandom123-dev libpcl-dev catch2 libopenmpi-dev openmpi-bin libxgboost-dev
   chromium python3 strace
   pybind11-dev python3-pybind11 python3-pytest python3-numpy python3-matplotlib python3-h5py
 )

@@ -12,6 +12,7 @@
 #include "ladarsim/core/json_fields.h"
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/expected_overlap.h"
+#include "ladarsim/detect/track_classification.h"
 
 namespace ladarsim::detect {
 
@@ -120,6 +121,11 @@ std::vector<std::vector<TrackCentre>> read_tracks(const Sequence& s, const nlohm
             h.score = o.number("score", -1e300, 1e300);
             o.integer("points", 0, kMaxFrame, 0);
             o.boolean("predicted", false);
+            if (o.has("class")) {
+                std::vector<std::string> names(track_class_names().begin(), track_class_names().end());
+                o.choice("class", names, "");
+                o.number("class_confidence", 0.0, 1.0);
+            }
             o.reject_unknown_keys();
             out[i].push_back(h);
         }
@@ -292,6 +298,11 @@ nlohmann::json evaluate_report(const Sequence& s, const nlohmann::json& report, 
         add_tracking_scores(s, *in.tracks, scores);
         scores["measures"].push_back("mot");
         scores["measures"].push_back("ap");
+        const nlohmann::json classification = classification_scores(s, report.at("tracks"));
+        if (!classification.is_null()) {
+            scores["classification"] = classification;
+            scores["measures"].push_back("classification");
+        }
     }
     if (in.has_supervised_block) scores["ignored"] = {"supervised"};
     return scores;

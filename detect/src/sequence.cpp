@@ -12,6 +12,7 @@
 #include "ladarsim/dataset/manifest.h"
 #include "ladarsim/detect/box_metrics.h"
 #include "ladarsim/detect/clustering.h"
+#include "ladarsim/detect/track_classification.h"
 
 namespace ladarsim::detect {
 
@@ -240,7 +241,8 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
     return c;
 }
 
-nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config, std::optional<std::uint32_t> target) {
+nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config, std::optional<std::uint32_t> target,
+                                const TrackClassifier* classifier) {
     if (!target) target = default_target(s);
     // Checked before any work: a target the ground truth lacks, in the user's terms.
     if (target) check_target(s, *target, s.directory / "ground_truth.json");
@@ -251,6 +253,7 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
     for (const auto& d : detect_sequence(s, config)) out["detections"].push_back(to_json(d));
     out["tracks"] = nlohmann::json::array();
     const auto tracked = track_sequence(s, config);
+    const auto classes = classifier ? classify_tracks(s.time_s, tracked, *classifier) : std::vector<std::vector<TrackClass>>{};
     for (std::size_t i = 0; i < tracked.size(); ++i) {
         nlohmann::json tracks = nlohmann::json::array();
         const auto& frame = tracked[i];
@@ -261,6 +264,11 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
             j["points"] = t.points;
             j["predicted"] = t.predicted;
             j["score"] = t.score;
+            if (classifier) {
+                const TrackClass& c = classes[i][tracks.size()];
+                j["class"] = track_class_names()[c.index];
+                j["class_confidence"] = c.confidence;
+            }
             tracks.push_back(j);
         }
         out["tracks"].push_back({{"frame", s.frame_index[i]}, {"objects", tracks}});

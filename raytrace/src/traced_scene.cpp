@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <deque>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -10,9 +11,11 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/QR>
 #include <embree3/rtcore.h>
 
 #include "embree_common.h"
+#include "ladarsim/scene/animation.h"
 #include "volume_boundaries.h"
 
 namespace ladarsim::raytrace {
@@ -27,12 +30,19 @@ struct TopGeometry {
     Geometry geometry;
     const scene::SceneObject* object = nullptr;  // null for the background discs
     const float* vertices = nullptr;              // static meshes: Embree's own vertex buffer (x y z per vertex)
+    // An animated object's instance of one animation part (its index into the model's parts), or
+    // of the triangles in none (-1); a moving instance of a whole model has -1 too.
+    int part = -1;
+    // The model's triangle index of each primitive of the instanced BVH; null: the same index.
+    const std::vector<std::uint32_t>* triangles = nullptr;
 };
 
-// One BVH per distinct model, instanced by every moving object that uses it.
+// One BVH per distinct model, instanced by every moving object that uses it; an animated model
+// has one per animation part and one for the triangles in none.
 struct ModelBvh {
     EmbreeScene scene;
     const scene::Model* model;
+    std::vector<std::uint32_t> triangles;  // empty: the whole mesh
 };
 
 using Matrix34 = Eigen::Matrix<double, 3, 4>;
@@ -60,7 +70,7 @@ struct TracedScene::Impl {
     unsigned fixed_instance = RTC_INVALID_GEOMETRY_ID;  // its geometry id in the top scene
     EmbreeScene top;
     std::optional<VolumeBoundaries> volumes;  // fog and cloud, traced only by volumes_along
-    std::vector<ModelBvh> models;
+    std::deque<ModelBvh> models;  // a deque: instances point at their BVH's triangle list
     std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene (null entry: `fixed`)
     std::map<const scene::Model*, std::size_t> model_index;
     const scene::BackgroundMap* background = nullptr;
@@ -144,6 +154,7 @@ struct TracedScene::Impl {
             if (!object.model || object.model->mesh.triangles.empty()) continue;
             add_bounds(object);
             if (object.model->is_volume()) add_volume(object);
+            else if (scene::animates(*object.model, object.animation)) add_animated_instances(object);
             else if (object.trajectory.is_static()) add_static_mesh(object);
             else add_moving_instance(object);
         }
@@ -173,20 +184,23 @@ struct TracedScene::Impl {
         by_id.push_back(std::move(entry));
     }
 
-    // Fills an Embree triangle geometry from a mesh, vertices mapped by `transform`.
-    Geometry triangle_geometry(const scene::TriangleMesh& mesh, const Matrix34& transform, float** vertex_buffer) {
+    // Fills an Embree triangle geometry from a mesh, vertices mapped by `transform`; only the
+    // triangles listed in `subset` when it is given.
+    Geometry triangle_geometry(const scene::TriangleMesh& mesh, const Matrix34& transform, float** vertex_buffer,
+                               const std::vector<std::uint32_t>* subset = nullptr) {
         Geometry g(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
+        const std::size_t triangles = subset ? subset->size() : mesh.triangles.size();
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                               3 * sizeof(float), mesh.positions.size()));
         auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
+                                                                 3 * sizeof(unsigned), triangles));
         check("allocating a triangle mesh");
         for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
             const Eigen::Vector3d p = transform * mesh.positions[i].cast<double>().homogeneous();
             for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(p[k]);
         }
-        for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-            for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+        for (std::size_t i = 0; i < triangles; ++i)
+            for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[subset ? (*subset)[i] : i][k];
         if (vertex_buffer) *vertex_buffer = v;
         return g;
     }
@@ -208,10 +222,11 @@ struct TracedScene::Impl {
     void add_bounds(const scene::SceneObject& object) {
         ObjectBounds b;
         b.object_id = object.id;
-        b.box_model = object.model->bounds().cast<double>();
+        const bool animated = !object.model->is_volume() && scene::animates(*object.model, object.animation);
+        b.box_model = animated ? scene::animated_bounds(*object.model, object.animation) : object.model->bounds().cast<double>();
         b.radius_m = 0.5 * object.scale * b.box_model.sizes().norm();
         b.volume = object.model->is_volume();
-        b.moving = !b.volume && !object.trajectory.is_static();
+        b.moving = !b.volume && (!object.trajectory.is_static() || animated);
         b.world_from_model = world_from_model(object, 0.0);
         b.centre_world = b.world_from_model * b.box_model.center().homogeneous();
         bounds.push_back({&object, b, {}});
@@ -231,18 +246,54 @@ struct TracedScene::Impl {
         volumes->add(object, std::move(g), vertices);
     }
 
+    // A BVH of the given triangles of a model in its own frame (all of them when `subset` is empty).
+    EmbreeScene model_bvh(const scene::Model& model, const std::vector<std::uint32_t>& subset) {
+        EmbreeScene child(rtcNewScene(device.get()));
+        rtcSetSceneBuildQuality(child.get(), RTC_BUILD_QUALITY_HIGH);
+        Geometry g = triangle_geometry(model.mesh, Matrix34::Identity(), nullptr, subset.empty() ? nullptr : &subset);
+        rtcCommitGeometry(g.get());
+        rtcAttachGeometry(child.get(), g.get());
+        rtcCommitScene(child.get());
+        check("building a model's BVH");
+        return child;
+    }
+
+    // One instance per animation part (and one for the triangles in none), each placed by the
+    // object's pose and its part's motion at the ray's time.
+    void add_animated_instances(const scene::SceneObject& object) {
+        const scene::Model& model = *object.model;
+        const auto& parts = model.animation->parts;
+        auto [it, inserted] = model_index.emplace(&model, models.size());
+        if (inserted) {
+            // models[first + 0]: the triangles in no part; models[first + 1 + p]: part p.
+            std::vector<bool> in_part(model.mesh.triangles.size(), false);
+            std::vector<std::vector<std::uint32_t>> lists(parts.size() + 1);
+            for (std::size_t p = 0; p < parts.size(); ++p)
+                for (std::uint32_t t = parts[p].first_triangle; t < parts[p].first_triangle + parts[p].triangle_count; ++t) {
+                    lists[p + 1].push_back(t);
+                    in_part[t] = true;
+                }
+            for (std::uint32_t t = 0; t < in_part.size(); ++t)
+                if (!in_part[t]) lists[0].push_back(t);
+            for (auto& list : lists) {
+                // An empty list stays empty: no BVH, and never instanced.
+                EmbreeScene child = list.empty() ? EmbreeScene{} : model_bvh(model, list);
+                models.push_back(ModelBvh{std::move(child), &model, std::move(list)});
+            }
+        }
+        for (std::size_t k = 0; k <= parts.size(); ++k) {
+            const ModelBvh& bvh = models[it->second + k];
+            if (bvh.triangles.empty()) continue;
+            Geometry instance(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE));
+            rtcSetGeometryInstancedScene(instance.get(), bvh.scene.get());
+            attach(TopGeometry{GeometryKind::moving_instance, std::move(instance), &object, nullptr, static_cast<int>(k) - 1,
+                               &bvh.triangles});
+        }
+    }
+
     void add_moving_instance(const scene::SceneObject& object) {
         auto [it, inserted] = model_index.emplace(object.model.get(), models.size());
-        if (inserted) {
-            EmbreeScene child(rtcNewScene(device.get()));
-            rtcSetSceneBuildQuality(child.get(), RTC_BUILD_QUALITY_HIGH);
-            Geometry g = triangle_geometry(object.model->mesh, Matrix34::Identity(), nullptr);
-            rtcCommitGeometry(g.get());
-            rtcAttachGeometry(child.get(), g.get());
-            rtcCommitScene(child.get());
-            check("building a model's BVH");
-            models.push_back(ModelBvh{std::move(child), object.model.get()});
-        }
+        if (inserted) models.push_back(ModelBvh{model_bvh(*object.model, {}), object.model.get(), {}});
         Geometry instance(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE));
         rtcSetGeometryInstancedScene(instance.get(), models[it->second].scene.get());
         attach(TopGeometry{GeometryKind::moving_instance, std::move(instance), &object, nullptr});
@@ -286,6 +337,10 @@ struct TracedScene::Impl {
         }
         for (auto& entry : geometries) {
             if (entry.kind != GeometryKind::moving_instance) continue;
+            if (entry.triangles) {
+                place_animated(entry, begin_s, motion_steps);
+                continue;
+            }
             RTCGeometry g = entry.geometry.get();
             rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(motion_steps));
             for (int step = 0; step < motion_steps; ++step) {
@@ -300,6 +355,76 @@ struct TracedScene::Impl {
         }
         rtcCommitScene(top.get());
         check("committing the scene");
+    }
+
+    // An animated object's instance for this window: enough steps for its animation (Embree's
+    // most is 129), each a rotation slerped about the part's node and a translation of that node
+    // interpolated linearly, so that a part turning steadily about its node is placed exactly.
+    void place_animated(TopGeometry& entry, double begin_s, int motion_steps) {
+        const scene::SceneObject& object = *entry.object;
+        const scene::Model& model = *object.model;
+        const double step_s = scene::animation_step_s(model, object.animation);
+        const double wanted = std::ceil(window_length_s / step_s) + 1.0;
+        const int steps = std::max(motion_steps, static_cast<int>(std::min(129.0, wanted)));
+        // The point the part turns about: its node's origin at rest (the model's origin for the
+        // triangles in no part).
+        Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
+        if (entry.part >= 0)
+            pivot = scene::rest_model_from_node(*model.animation)[model.animation->parts[static_cast<std::size_t>(entry.part)].node].translation();
+        RTCGeometry g = entry.geometry.get();
+        rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(steps));
+        thread_local std::vector<Eigen::Affine3d> motions;
+        Eigen::Quaterniond previous = Eigen::Quaterniond::Identity();
+        for (int step = 0; step < steps; ++step) {
+            const double t = begin_s + window_length_s * step / (steps - 1);
+            Eigen::Matrix<double, 3, 4> m = relative_from_model(object, t);
+            if (entry.part >= 0) {
+                scene::part_motions(model, object.animation, t, motions);
+                m = m * motions[static_cast<std::size_t>(entry.part)].matrix();
+            }
+            RTCQuaternionDecomposition q = decompose(m, pivot);
+            // Consecutive steps on one hemisphere: Embree slerps between them.
+            Eigen::Quaterniond r(q.quaternion_r, q.quaternion_i, q.quaternion_j, q.quaternion_k);
+            if (step > 0 && r.dot(previous) < 0.0) {
+                r.coeffs() = -r.coeffs();
+                q.quaternion_r = static_cast<float>(r.w()), q.quaternion_i = static_cast<float>(r.x());
+                q.quaternion_j = static_cast<float>(r.y()), q.quaternion_k = static_cast<float>(r.z());
+            }
+            previous = r;
+            rtcSetGeometryTransformQuaternion(g, static_cast<unsigned>(step), &q);
+        }
+        rtcCommitGeometry(g);
+    }
+
+    // m = [A | b] as Embree's T * R * S with S upper triangular: A = R U (QR, U's diagonal made
+    // positive), S p = U (p - pivot), T = A pivot + b.
+    static RTCQuaternionDecomposition decompose(const Eigen::Matrix<double, 3, 4>& m, const Eigen::Vector3d& pivot) {
+        const Eigen::Matrix3d a = m.leftCols<3>();
+        const Eigen::HouseholderQR<Eigen::Matrix3d> qr(a);
+        Eigen::Matrix3d r = qr.householderQ();
+        Eigen::Matrix3d u = qr.matrixQR().triangularView<Eigen::Upper>();
+        for (int i = 0; i < 3; ++i)
+            if (u(i, i) < 0.0) {
+                u.row(i) *= -1.0;
+                r.col(i) *= -1.0;
+            }
+        if (r.determinant() < 0.0) {  // a mirrored model: the reflection goes into the scale
+            u.row(2) *= -1.0;
+            r.col(2) *= -1.0;
+        }
+        const Eigen::Quaterniond rotation(r);
+        const Eigen::Vector3d shift = -u * pivot;
+        const Eigen::Vector3d translation = a * pivot + m.col(3);
+        RTCQuaternionDecomposition q;
+        rtcInitQuaternionDecomposition(&q);
+        q.scale_x = static_cast<float>(u(0, 0)), q.scale_y = static_cast<float>(u(1, 1)), q.scale_z = static_cast<float>(u(2, 2));
+        q.skew_xy = static_cast<float>(u(0, 1)), q.skew_xz = static_cast<float>(u(0, 2)), q.skew_yz = static_cast<float>(u(1, 2));
+        q.shift_x = static_cast<float>(shift.x()), q.shift_y = static_cast<float>(shift.y()), q.shift_z = static_cast<float>(shift.z());
+        q.quaternion_r = static_cast<float>(rotation.w()), q.quaternion_i = static_cast<float>(rotation.x());
+        q.quaternion_j = static_cast<float>(rotation.y()), q.quaternion_k = static_cast<float>(rotation.z());
+        q.translation_x = static_cast<float>(translation.x()), q.translation_y = static_cast<float>(translation.y());
+        q.translation_z = static_cast<float>(translation.z());
+        return q;
     }
 
     // A moving object's centre at any time of the window is a linear interpolation between two
@@ -373,10 +498,10 @@ struct TracedScene::Impl {
         } else {
             const scene::SceneObject& object = *entry.object;
             const scene::Model& model = *object.model;
-            const auto& tri = model.mesh.triangles[prim];
+            const auto& tri = model.mesh.triangles[entry.triangles ? (*entry.triangles)[prim] : prim];
             hit.object_id = object.id;
             hit.object_class = object.object_class;
-            hit.material = model.mesh.triangle_material[prim];
+            hit.material = model.mesh.triangle_material[entry.triangles ? (*entry.triangles)[prim] : prim];
             hit.reflectance = static_cast<float>(model.materials[hit.material].reflectance);
             Eigen::Vector3d v[3];
             if (entry.kind == GeometryKind::static_mesh) {

@@ -3,14 +3,17 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <spdlog/spdlog.h>
 #include <tiny_gltf.h>
 
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/scene/animation.h"
 
 namespace ladarsim::scene {
 namespace {
@@ -27,6 +30,7 @@ public:
         model.source = file_;
         read_materials(model);
         for (int root : root_nodes()) add_node(root, model_from_gltf(), model, 0);
+        if (!gltf_.animations.empty()) read_animation(model);
         drop_unreferenced_vertices(model.mesh);
         report_.triangles_loaded = model.mesh.triangles.size();
         return model;
@@ -148,7 +152,10 @@ private:
         if (depth > static_cast<int>(gltf_.nodes.size())) fail(field + ".children", "node hierarchy contains a cycle");
         const tinygltf::Node& node = gltf_.nodes[static_cast<std::size_t>(index)];
         const Matrix4 world = parent * local_transform(node, field);
-        if (node.mesh >= 0) add_mesh(node.mesh, world, model);
+        if (node.mesh >= 0) {
+            add_mesh(node.mesh, world, model);
+            triangle_node_.resize(model.mesh.triangles.size(), index);
+        }
         for (int child : node.children) add_node(child, world, model, depth + 1);
     }
 
@@ -283,10 +290,147 @@ private:
         return out;
     }
 
+    // glTF axes to model axes, for vectors (translations, scales, a quaternion's axis part): the
+    // transforms of the node hierarchy become model_from_gltf * T * model_from_gltf^-1.
+    static Eigen::Vector3d to_model_axes(const double* gltf) { return {gltf[2], gltf[0], gltf[1]}; }
+
+    void read_animation(Model& model) {
+        auto animation = std::make_shared<Animation>();
+        std::vector<bool> animated(gltf_.nodes.size(), false);
+        for (std::size_t a = 0; a < gltf_.animations.size(); ++a) animation->clips.push_back(read_clip(a, animated));
+        read_nodes(*animation);
+        // Each triangle moves with the deepest animated node above it (its own node included);
+        // triangles under none are left out of every part.
+        const auto driver = [&](int node) {
+            for (; node >= 0; node = animation->nodes[static_cast<std::size_t>(node)].parent)
+                if (animated[static_cast<std::size_t>(node)]) return node;
+            return -1;
+        };
+        TriangleMesh& mesh = model.mesh;
+        std::vector<std::size_t> order(mesh.triangles.size());
+        std::vector<int> drivers(mesh.triangles.size());
+        for (std::size_t t = 0; t < order.size(); ++t) {
+            order[t] = t;
+            drivers[t] = driver(triangle_node_[t]);
+        }
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return drivers[a] < drivers[b]; });
+        TriangleMesh sorted;
+        sorted.positions = std::move(mesh.positions);
+        for (std::size_t t : order) {
+            sorted.triangles.push_back(mesh.triangles[t]);
+            sorted.triangle_material.push_back(mesh.triangle_material[t]);
+            const int d = drivers[t];
+            if (d < 0) continue;
+            const auto index = static_cast<std::uint32_t>(sorted.triangles.size() - 1);
+            if (animation->parts.empty() || animation->parts.back().node != static_cast<std::uint32_t>(d))
+                animation->parts.push_back(AnimationPart{static_cast<std::uint32_t>(d), index, 0});
+            ++animation->parts.back().triangle_count;
+        }
+        mesh = std::move(sorted);
+        model.animation = std::move(animation);
+    }
+
+    void read_nodes(Animation& animation) const {
+        const Matrix4 p = model_from_gltf();
+        animation.nodes.resize(gltf_.nodes.size());
+        for (std::size_t i = 0; i < gltf_.nodes.size(); ++i) {
+            const tinygltf::Node& node = gltf_.nodes[i];
+            const std::string field = "nodes[" + std::to_string(i) + "]";
+            AnimationNode& n = animation.nodes[i];
+            n.name = node.name;
+            for (int c : node.children) {
+                if (c < 0 || c >= static_cast<int>(gltf_.nodes.size())) fail(field + ".children", "index out of range");
+                if (animation.nodes[static_cast<std::size_t>(c)].parent >= 0) fail(field + ".children", "node " + std::to_string(c) + " has two parents");
+                animation.nodes[static_cast<std::size_t>(c)].parent = static_cast<int>(i);
+            }
+            if (!node.matrix.empty()) {
+                n.has_matrix = true;
+                n.matrix = p * local_transform(node, field) * p.transpose();
+                continue;
+            }
+            if (node.translation.size() == 3) n.translation = to_model_axes(node.translation.data());
+            if (node.rotation.size() == 4) {
+                const Eigen::Vector3d axis = to_model_axes(node.rotation.data());
+                n.rotation = Eigen::Quaterniond(node.rotation[3], axis.x(), axis.y(), axis.z()).normalized();
+            }
+            if (node.scale.size() == 3) n.scale = to_model_axes(node.scale.data());
+        }
+        // A cycle would make the poser walk up forever.
+        for (std::size_t i = 0; i < animation.nodes.size(); ++i) {
+            std::size_t steps = 0;
+            for (int n = static_cast<int>(i); n >= 0; n = animation.nodes[static_cast<std::size_t>(n)].parent)
+                if (++steps > animation.nodes.size()) fail("nodes[" + std::to_string(i) + "]", "node hierarchy contains a cycle");
+        }
+    }
+
+    AnimationClip read_clip(std::size_t a, std::vector<bool>& animated) const {
+        const tinygltf::Animation& g = gltf_.animations[a];
+        const std::string field = "animations[" + std::to_string(a) + "]";
+        AnimationClip clip;
+        clip.name = g.name.empty() ? field : g.name;
+        for (std::size_t c = 0; c < g.channels.size(); ++c) {
+            const tinygltf::AnimationChannel& gc = g.channels[c];
+            const std::string cfield = field + ".channels[" + std::to_string(c) + "]";
+            AnimationChannel channel;
+            if (gc.target_path == "weights") {
+                spdlog::warn("{}: {}: morph target weights are not supported; channel skipped", file_, cfield);
+                continue;
+            }
+            if (gc.target_path == "translation") channel.path = AnimationPath::translation;
+            else if (gc.target_path == "rotation") channel.path = AnimationPath::rotation;
+            else if (gc.target_path == "scale") channel.path = AnimationPath::scale;
+            else fail(cfield + ".target.path", "unknown path '" + gc.target_path + "'");
+            if (gc.target_node < 0 || gc.target_node >= static_cast<int>(gltf_.nodes.size())) fail(cfield + ".target.node", "index out of range");
+            if (!gltf_.nodes[static_cast<std::size_t>(gc.target_node)].matrix.empty())
+                fail(cfield + ".target.node", "an animated node must not have a matrix");
+            channel.node = static_cast<std::uint32_t>(gc.target_node);
+            if (gc.sampler < 0 || gc.sampler >= static_cast<int>(g.samplers.size())) fail(cfield + ".sampler", "index out of range");
+            const std::string sfield = field + ".samplers[" + std::to_string(gc.sampler) + "]";
+            read_sampler(g.samplers[static_cast<std::size_t>(gc.sampler)], sfield, channel);
+            clip.duration_s = std::max(clip.duration_s, channel.times_s.back());
+            animated[channel.node] = true;
+            clip.channels.push_back(std::move(channel));
+        }
+        return clip;
+    }
+
+    void read_sampler(const tinygltf::AnimationSampler& s, const std::string& field, AnimationChannel& channel) const {
+        if (s.interpolation.empty() || s.interpolation == "LINEAR") channel.interpolation = AnimationInterpolation::linear;
+        else if (s.interpolation == "STEP") channel.interpolation = AnimationInterpolation::step;
+        else if (s.interpolation == "CUBICSPLINE") channel.interpolation = AnimationInterpolation::cubic_spline;
+        else fail(field + ".interpolation", "must be LINEAR, STEP or CUBICSPLINE, got '" + s.interpolation + "'");
+        const AccessorView in = view(s.input, field + ".input");
+        if (in.components != 1 || in.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(field + ".input", "must be a SCALAR float accessor");
+        if (in.count == 0) fail(field + ".input", "has no keys");
+        for (std::size_t i = 0; i < in.count; ++i) {
+            const double t = component(in.data + i * in.stride, in.component_type, false);
+            if (!std::isfinite(t) || t < 0.0 || (!channel.times_s.empty() && !(t > channel.times_s.back())))
+                fail(field + ".input", "key times must be finite, >= 0 and increasing");
+            channel.times_s.push_back(t);
+        }
+        const int n = channel.path == AnimationPath::rotation ? 4 : 3;
+        const AccessorView out = view(s.output, field + ".output");
+        if (out.components != n) fail(field + ".output", n == 4 ? "must be a VEC4 accessor for rotation" : "must be a VEC3 accessor");
+        const std::size_t per_key = channel.interpolation == AnimationInterpolation::cubic_spline ? 3 : 1;
+        if (out.count != per_key * in.count)
+            fail(field + ".output", "has " + std::to_string(out.count) + " values for " + std::to_string(in.count) + " keys");
+        const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(out.component_type));
+        for (std::size_t i = 0; i < out.count; ++i) {
+            double v[4];
+            for (int c = 0; c < n; ++c) v[c] = component(out.data + i * out.stride + static_cast<std::size_t>(c * size), out.component_type, out.normalized);
+            for (int c = 0; c < n; ++c)
+                if (!std::isfinite(v[c])) fail(field + ".output", "value " + std::to_string(i) + " is not finite");
+            const Eigen::Vector3d axes = to_model_axes(v);
+            channel.values.insert(channel.values.end(), {axes.x(), axes.y(), axes.z()});
+            if (n == 4) channel.values.push_back(v[3]);
+        }
+    }
+
     std::string file_;
     const tinygltf::Model& gltf_;
     GltfLoadReport& report_;
     std::optional<std::uint32_t> default_material_;
+    std::vector<int> triangle_node_;  // the glTF node each triangle came from
 };
 
 }  // namespace

@@ -1,11 +1,15 @@
 #include "ladarsim/scene/procedural_models.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <system_error>
 
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/scene/animation.h"
 #include "ladarsim/scene/gltf_writer.h"
 
 namespace ladarsim::scene {
@@ -118,11 +122,47 @@ public:
         convex_piece(v, t, material);
     }
 
-    Model take() { return std::move(model_); }
+    std::uint32_t triangle_count() const { return static_cast<std::uint32_t>(model_.mesh.triangles.size()); }
+
+    /// A node of the model's animation at `origin` (no rotation), carrying the triangles made
+    /// since `first_triangle`, turning about `axis` through `angle_deg(t)` over one period, as
+    /// `keys_per_period` LINEAR keys. Returns the node's index.
+    std::uint32_t turning_part(const std::string& name, const Eigen::Vector3d& origin, std::uint32_t first_triangle,
+                               const Eigen::Vector3d& axis, double period_s, int keys_per_period,
+                               const std::function<double(double)>& angle_deg) {
+        if (!animation_) animation_ = std::make_shared<Animation>();
+        if (animation_->clips.empty()) animation_->clips.push_back(AnimationClip{name, {}, 0.0});
+        const auto node = static_cast<std::uint32_t>(animation_->nodes.size());
+        AnimationNode n;
+        n.name = name;
+        n.translation = origin;
+        animation_->nodes.push_back(n);
+        animation_->parts.push_back(AnimationPart{node, first_triangle, triangle_count() - first_triangle});
+        AnimationChannel channel;
+        channel.node = node;
+        channel.path = AnimationPath::rotation;
+        channel.interpolation = AnimationInterpolation::linear;
+        for (int k = 0; k <= keys_per_period; ++k) {
+            const double t = period_s * k / keys_per_period;
+            const Eigen::Quaterniond q(Eigen::AngleAxisd(angle_deg(t) * kPi / 180.0, axis.normalized()));
+            channel.times_s.push_back(t);
+            channel.values.insert(channel.values.end(), {q.x(), q.y(), q.z(), q.w()});
+        }
+        AnimationClip& clip = animation_->clips.front();
+        clip.duration_s = std::max(clip.duration_s, period_s);
+        clip.channels.push_back(std::move(channel));
+        return node;
+    }
+
+    Model take() {
+        model_.animation = std::move(animation_);
+        return std::move(model_);
+    }
     Model& model() { return model_; }
 
 private:
     Model model_;
+    std::shared_ptr<Animation> animation_;
 };
 
 }  // namespace
@@ -132,6 +172,7 @@ Model make_quadcopter() {
     const std::uint32_t shell = b.material("white_plastic", 0.6);
     const std::uint32_t black = b.material("black_plastic", 0.06);
     const double rotor_radius = 0.06, arm_reach = 0.15 - rotor_radius;  // rotor tips at +-0.15 m
+    const double hub_z = 0.032;
     b.box(Eigen::Affine3d::Identity(), {0.05, 0.05, 0.025}, shell);
     for (int k = 0; k < 4; ++k) {
         const double angle = kPi / 4.0 + k * kPi / 2.0;
@@ -143,7 +184,16 @@ Model make_quadcopter() {
         arm.translate(Eigen::Vector3d(0.5 * length, 0.0, 0.0));
         b.box(arm, {0.5 * length, 0.006, 0.005}, shell);
         b.frustum(mx, my, 0.0, 0.03, 0.014, 0.014, 16, black);
-        b.frustum(mx, my, 0.03, 0.004, rotor_radius, rotor_radius, 24, black);
+        // Two blades; at rest along x on one diagonal and along y on the other, so that the
+        // tips reach +-0.15 m on both axes. Neighbouring rotors turn opposite ways.
+        const std::uint32_t first = b.triangle_count();
+        Eigen::Affine3d blade = Eigen::Affine3d::Identity();
+        blade.translate(Eigen::Vector3d(mx, my, hub_z));
+        blade.rotate(Eigen::AngleAxisd(k % 2 == 0 ? 0.0 : kPi / 2.0, Eigen::Vector3d::UnitZ()));
+        b.box(blade, {rotor_radius, 0.008, 0.002}, black);
+        const double direction = k % 2 == 0 ? 1.0 : -1.0;
+        b.turning_part("rotor " + std::to_string(k), {mx, my, hub_z}, first, Eigen::Vector3d::UnitZ(),
+                       1.0 / kRotorRevolutionsPerSecond, 4, [direction](double t) { return direction * 360.0 * kRotorRevolutionsPerSecond * t; });
     }
     return b.take();
 }
@@ -224,9 +274,15 @@ Model make_bird(double wingspan_m) {
     const double s = wingspan_m;
     b.ellipsoid(Eigen::Vector3d::Zero(), {0.22 * s, 0.06 * s, 0.06 * s}, 12, feathers);
     for (double side : {-1.0, 1.0}) {
+        const std::uint32_t first = b.triangle_count();
         Eigen::Affine3d wing = Eigen::Affine3d::Identity();
         wing.translate(Eigen::Vector3d(0.0, side * 0.27 * s, 0.02 * s));
         b.box(wing, {0.07 * s, 0.23 * s, 0.005 * s}, feathers);
+        // Hinged at the body; up is a turn about +x for the left wing (+y), about -x for the right.
+        b.turning_part(side > 0 ? "left wing" : "right wing", {0.0, side * 0.04 * s, 0.02 * s}, first,
+                       Eigen::Vector3d(side, 0.0, 0.0), 1.0 / kBirdWingbeatHz, 16, [](double t) {
+                           return kWingMeanDeg + kWingAmplitudeDeg * std::sin(2.0 * kPi * kBirdWingbeatHz * t);
+                       });
     }
     return b.take();
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ladarsim/core/input_error.h"
+#include "ladarsim/scene/animation.h"
 #include "ladarsim/scene/background_map.h"
 #include "ladarsim/scene/gltf_loader.h"
 
@@ -185,6 +186,32 @@ std::shared_ptr<const Model> apply_material_overrides(JsonFields& o, std::shared
     return model;
 }
 
+/// `animation`: "all" (the default: every animation of the model, looping from time 0), "none",
+/// or the name of one of the model's glTF animations.
+AnimationChoice read_animation_choice(JsonFields& o, const Model& model) {
+    AnimationChoice choice;
+    const std::string name = o.string("animation", "all");
+    if (name == "all") return choice;
+    if (name == "none") {
+        choice.mode = AnimationChoice::Mode::none;
+        return choice;
+    }
+    std::string names;
+    if (model.animation) {
+        const auto& clips = model.animation->clips;
+        for (std::size_t c = 0; c < clips.size(); ++c) {
+            if (clips[c].name == name) {
+                choice.mode = AnimationChoice::Mode::one;
+                choice.clip = static_cast<std::uint32_t>(c);
+                return choice;
+            }
+            names += (names.empty() ? "\"" : ", \"") + clips[c].name + "\"";
+        }
+    }
+    o.fail("animation", "no animation of this name in " + model.source + " (give \"all\", \"none\"" +
+                            (names.empty() ? std::string(": it has none)") : " or one of: " + names + ")"));
+}
+
 SceneObject read_object(JsonFields& o, std::uint32_t id, const fs::path& scenario_dir, ModelCache& models) {
     SceneObject object;
     object.id = id;
@@ -201,6 +228,7 @@ SceneObject read_object(JsonFields& o, std::uint32_t id, const fs::path& scenari
         o.fail("model", e.what());
     }
     object.model = apply_material_overrides(o, model);
+    object.animation = read_animation_choice(o, *object.model);
 
     if (o.has("size_m") && o.has("scale")) o.fail("scale", "give size_m or scale, not both");
     if (o.has("size_m")) {

@@ -583,14 +583,19 @@ TEST_CASE("a small target over a recorded map: its echo as 4096 sub-rays weigh i
     CHECK(got.median_range_error_m <= 1.25 * brute_force.median_range_error_m);
 }
 
-TEST_CASE("sparse targets, one alone and one behind a flock: the returns 4096 sub-rays see are found", "[footprint][targets]") {
+TEST_CASE("sparse targets, one alone and one behind a flock: the returns two converged references agree are strong are found", "[footprint][targets]") {
     // A quadcopter's arms and rotors fill a few per cent of a rectangle around it and the birds
     // 17 m in front of it, and a bird's wings (thin boxes) a few per cent of its box: an outline's
     // first cells can all miss such a target, and cells that agree on nothing settle. On a strip of
-    // the paper's raster at 450 m (noise off), of the (beam, target) returns 4096 sub-rays see at
-    // more than 5x the threshold, the adaptive footprints missed 54 of 203 before targets took
-    // seeds (rays at points of their surfaces); now 2, on birds' wing edges, so at most 2 %.
-    // Seen from 27 m below, as dataset 2's drone is (3.4 deg up).
+    // the paper's raster at 450 m (noise off), of the (beam, target) returns the references below
+    // see at more than 5x the threshold, the adaptive footprints missed 88 of 200 without seeds
+    // (rays at points of their surfaces); with them 1, the drone behind a bird, where it shows a
+    // sliver (~0.06 % of the beam). Seen from 27 m below, as dataset 2's drone is (3.4 deg up).
+    // The reference must itself be converged. 4096 sub-rays were not: a bright bird's fringe
+    // (~14,500 thresholds per unit of the beam's energy, so 0.2 threshold a sub-ray at 65,536)
+    // gave 6.5x the threshold at 4096 and 3.0x at 65,536. So two references of 65,536 sub-rays
+    // (other seeds): a return both call strong is judged, and those strong in only one (within
+    // their own scatter of the 5x cut) must be few.
     Scenario s = closed_form_scenario();
     set_raster(s.sensor, 32, 20, 0.5 * 32 / 150, 0.5);
     s.mount.gimbal_el_deg = std::atan2(27.0, 450.0) * 180.0 / M_PI;
@@ -598,32 +603,67 @@ TEST_CASE("sparse targets, one alone and one behind a flock: the returns 4096 su
     s.scene.objects.push_back(object_at(1, model(scene::make_quadcopter()), sliding({450.0, 0.0, 27.0}, {0.0, 0.5, 0.0})));
     const std::array<Eigen::Vector3d, 4> birds = {Eigen::Vector3d(433.0, 0.25, 26.1), Eigen::Vector3d(433.0, -0.2, 25.85),
                                                   Eigen::Vector3d(433.0, 0.1, 25.65), Eigen::Vector3d(450.0, 0.0, 28.2)};
+    constexpr std::uint32_t kFirstBird = 20;
     for (std::size_t k = 0; k < birds.size(); ++k)
-        s.scene.objects.push_back(object_at(static_cast<std::uint32_t>(20 + k), model(scene::make_bird(0.45)), sliding(birds[k], {-5.0, 0.0, 0.2}),
-                                            scene::ObjectClass::bird));
-    auto render = [&](int samples) {
+        s.scene.objects.push_back(object_at(static_cast<std::uint32_t>(kFirstBird + k), model(scene::make_bird(0.45)),
+                                            sliding(birds[k], {-5.0, 0.0, 0.2}), scene::ObjectClass::bird));
+    const auto is_bird = [&](std::uint32_t id) { return id >= kFirstBird && id < kFirstBird + birds.size(); };
+    struct Seen {
+        double energy_pe = 0.0;
+        double range_m = 0.0;  ///< of its first return
+    };
+    using Returns = std::map<std::pair<int, std::uint32_t>, Seen>;  // by (raster cell, object)
+    auto render = [&](int samples, std::uint64_t seed) {
         Scenario run = s;
         run.render.footprint_samples = samples;
+        run.render.seed = seed;
         FrameRenderer renderer(run);
-        std::map<std::pair<int, std::uint32_t>, double> energy;  // by (raster cell, object)
-        for (const Return& r : renderer.render(0).returns) energy[{r.row * 1000 + r.column, r.object_id}] += r.intensity;
-        return energy;
-    };
-    const auto adaptive = render(0), reference = render(4096);
-    const double threshold_pe = threshold_photoelectrons(s);
-    int strong = 0, missing = 0;
-    std::set<std::uint32_t> seen;
-    for (const auto& [key, e] : reference) {
-        if (e <= 5.0 * threshold_pe) continue;
-        ++strong;
-        seen.insert(key.second);
-        if (!adaptive.contains(key)) {
-            ++missing;
-            UNSCOPED_INFO("missing: beam " << key.first << ", object " << key.second << ", " << e << " photo-electrons");
+        Returns seen;
+        for (const Return& r : renderer.render(0).returns) {
+            auto [it, first] = seen.try_emplace({r.row * 1000 + r.column, r.object_id});
+            if (first) it->second.range_m = r.range_m;
+            it->second.energy_pe += r.intensity;
         }
+        return seen;
+    };
+    constexpr int kReferenceSubRays = 65536;
+    const Returns adaptive = render(0, 1), reference = render(kReferenceSubRays, 1), second = render(kReferenceSubRays, 2);
+    const double threshold_pe = threshold_photoelectrons(s);
+    // Echoes closer in range than the pulse's length make one pulse in the waveform, which the
+    // receiver labels by the surface that gives most of it where it crosses the threshold: birds
+    // flying together at one range (three here, 433 m out) make one return whose label is a near
+    // tie between them. Such a return counts as found under any of those birds. The drone is
+    // judged under its own label.
+    const double pulse_length_m = 0.5 * kSpeedOfLight_mps * s.sensor.transmitter.pulse_width_ns * 1e-9;
+    auto found = [&](const std::pair<int, std::uint32_t>& key, double range_m) {
+        if (adaptive.contains(key)) return true;
+        if (!is_bird(key.second)) return false;
+        return std::any_of(adaptive.lower_bound({key.first, 0}), adaptive.upper_bound({key.first, kNoObject}), [&](const auto& other) {
+            return is_bird(other.first.second) && std::abs(other.second.range_m - range_m) < pulse_length_m;
+        });
+    };
+    auto strong_in = [&](const Returns& x, const std::pair<int, std::uint32_t>& key) {
+        const auto it = x.find(key);
+        return it != x.end() && it->second.energy_pe > 5.0 * threshold_pe;
+    };
+    std::set<std::pair<int, std::uint32_t>> keys;
+    for (const Returns* x : {&reference, &second})
+        for (const auto& [key, seen] : *x) keys.insert(key);
+    int strong = 0, one_only = 0, missing = 0;
+    std::set<std::uint32_t> targets;
+    for (const auto& key : keys) {
+        const bool a = strong_in(reference, key), b = strong_in(second, key);
+        one_only += a != b;
+        if (!a || !b) continue;
+        ++strong;
+        targets.insert(key.second);
+        if (found(key, reference.at(key).range_m)) continue;
+        ++missing;
+        UNSCOPED_INFO("missing: beam " << key.first << ", object " << key.second << ", " << reference.at(key).energy_pe << " photo-electrons");
     }
-    INFO(strong << " strong (beam, target) returns in the reference, " << missing << " missing");
-    REQUIRE(seen.size() == 5);  // the drone and every bird
+    INFO(strong << " strong (beam, target) returns in both references, " << one_only << " in one only, " << missing << " missing");
+    REQUIRE(targets.size() == 5);  // the drone and every bird
+    CHECK(one_only <= strong / 50);
     CHECK(missing <= strong / 50);
 }
 

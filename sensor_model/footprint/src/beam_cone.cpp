@@ -27,11 +27,20 @@ BeamCone::BeamCone(const FootprintContext& context, const std::vector<scene::Sce
         if (!object.model || object.model->is_volume() || object.model->mesh.triangles.empty()) continue;
         const scene::TriangleMesh& mesh = object.model->mesh;
         const std::size_t stride = (mesh.triangles.size() + kSeedCandidates - 1) / kSeedCandidates;
-        TargetShape& shape = target_shapes_[object.id];
+        TargetSeeds& shape = target_shapes_[object.id];
+        static const std::vector<scene::AnimationPart> kNoParts;
+        const auto& parts = object.model->animation ? object.model->animation->parts : kNoParts;
         for (std::size_t t = 0; t < mesh.triangles.size(); t += stride) {
             const auto& tri = mesh.triangles[t];
-            shape.seed_points.push_back((mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).cast<double>() / 3.0);
+            shape.points.push_back((mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).cast<double>() / 3.0);
+            const auto in = std::find_if(parts.begin(), parts.end(), [t](const scene::AnimationPart& p) {
+                return t >= p.first_triangle && t < std::size_t{p.first_triangle} + p.triangle_count;
+            });
+            shape.part.push_back(in == parts.end() ? -1 : static_cast<std::int32_t>(in - parts.begin()));
         }
+        shape.model = object.model.get();
+        shape.animation = object.animation;
+        shape.animated = scene::animates(*object.model, object.animation);
         for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);
     }
 }
@@ -80,7 +89,7 @@ void BeamCone::find(const BeamAim& aim, TargetsInCone& out) const {
         double max_reflectance = 1.0;
         const auto shape = target_shapes_.find(b.object_id);
         if (shape != target_shapes_.end()) {
-            out.with_seeds.emplace_back(&b, &shape->second.seed_points);
+            out.with_seeds.emplace_back(&b, &shape->second);
             max_reflectance = shape->second.max_reflectance;
         }
         const double share = footprint.cell_weight(footprint.axis_cdf(seen->x_hi) - footprint.axis_cdf(seen->x_lo),
@@ -124,15 +133,23 @@ std::optional<FootprintRect> BeamCone::outline_of(const raytrace::ObjectBounds& 
     return footprint.clip(outline);
 }
 
-void BeamCone::seed_offsets(const raytrace::ObjectBounds& b, const std::vector<Eigen::Vector3d>& points, const BeamAim& aim,
+void BeamCone::seed_offsets(const raytrace::ObjectBounds& b, const TargetSeeds& seeds, const BeamAim& aim,
                             std::vector<Eigen::Vector2d>& out) const {
     const Eigen::Vector3d& origin = aim.origin_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
+    const double time_s = aim.time_s;
     const double ellipticity = context_.shape.ellipticity();
+    // A beating wing or a turning blade is where its animation has it at the beam's time, not at
+    // rest: seeds taken at rest missed them.
+    thread_local std::vector<Eigen::Affine3d> motions;
+    if (seeds.animated) scene::part_motions(*seeds.model, seeds.animation, time_s, motions);
     // Nearest the axis by the tangents of the offsets (as good as the angles this close to it).
     thread_local std::vector<std::pair<double, Eigen::Vector3d>> candidates;
     candidates.clear();
-    for (const Eigen::Vector3d& p : points) {
+    for (std::size_t i = 0; i < seeds.points.size(); ++i) {
+        const std::int32_t part = seeds.part[i];
+        const Eigen::Vector3d p = seeds.animated && part >= 0 ? Eigen::Vector3d(motions[static_cast<std::size_t>(part)] * seeds.points[i])
+                                                              : seeds.points[i];
         const Eigen::Vector3d c = beam_from_world * (b.world_from_model * p.homogeneous() - origin);
         if (!(c.x() > 0.0)) continue;
         const double ty = c.y() / c.x(), tz = c.z() / (c.x() * ellipticity);
@@ -153,7 +170,7 @@ void BeamCone::add_seeds(const BeamAim& aim, const TargetsInCone& targets, std::
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> results;
     seeds_at.clear();
-    for (const auto& [b, points] : targets.with_seeds) seed_offsets(*b, *points, aim, seeds_at);
+    for (const auto& [b, seeds] : targets.with_seeds) seed_offsets(*b, *seeds, aim, seeds_at);
     if (seeds_at.empty()) return;
     seeds.clear();
     rays.clear();

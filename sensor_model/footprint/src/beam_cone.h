@@ -14,6 +14,18 @@
 
 namespace ladarsim::sensor_model {
 
+/// What the integrator knows ahead of a mesh object met as a target: points of its surface tried
+/// as seeds, where its animation moves them, and the brightest echo it can send.
+struct TargetSeeds {
+    std::vector<Eigen::Vector3d> points;  ///< facet centroids at rest (model coordinates)
+    /// The animation part each point's facet belongs to (-1: none, it moves with the model).
+    std::vector<std::int32_t> part;
+    const scene::Model* model = nullptr;
+    scene::AnimationChoice animation;
+    bool animated = false;  ///< some part moves: points are placed at each beam's time
+    double max_reflectance = 0.0;  ///< of its materials: bounds its echo
+};
+
 /// What one beam's cone holds (one per thread, reused).
 struct TargetsInCone {
     std::vector<raytrace::ObjectBounds> objects;  ///< every object near the cone, at the beam's time
@@ -23,7 +35,7 @@ struct TargetsInCone {
     double brightest_j = 0.0;   ///< the largest echo any of them could send back
     std::uint32_t lone_id = 0;  ///< the last one met: with one, that one
     /// Those with a mesh, which seeds can be taken on, and their seed candidates.
-    std::vector<std::pair<const raytrace::ObjectBounds*, const std::vector<Eigen::Vector3d>*>> with_seeds;
+    std::vector<std::pair<const raytrace::ObjectBounds*, const TargetSeeds*>> with_seeds;
 };
 
 class BeamCone {
@@ -40,21 +52,16 @@ public:
                    std::vector<const Probe*>& witnesses, BeamEchoes& out) const;
 
 private:
-    /// What the integrator knows ahead of a mesh object met as a target.
-    struct TargetShape {
-        std::vector<Eigen::Vector3d> seed_points;  ///< facet centroids (model coordinates) tried as seeds
-        double max_reflectance = 0.0;              ///< of its materials: bounds its echo
-    };
     /// The outline of object `b` (its bounding sphere passed the cone test) in the footprint, or
     /// nothing where it lies outside.
     std::optional<FootprintRect> outline_of(const raytrace::ObjectBounds& b, bool inside, const BeamAim& aim) const;
-    /// Appends the footprint offsets of the points of target `b` (its seed candidates `points`)
-    /// nearest the beam's axis, those inside the truncation.
-    void seed_offsets(const raytrace::ObjectBounds& b, const std::vector<Eigen::Vector3d>& points, const BeamAim& aim,
+    /// Appends the footprint offsets of the seed candidates of target `b` nearest the beam's axis
+    /// (placed where its animation has them at the beam's time), those inside the truncation.
+    void seed_offsets(const raytrace::ObjectBounds& b, const TargetSeeds& seeds, const BeamAim& aim,
                       std::vector<Eigen::Vector2d>& out) const;
 
     const FootprintContext& context_;
-    std::unordered_map<std::uint32_t, TargetShape> target_shapes_;  ///< by object id
+    std::unordered_map<std::uint32_t, TargetSeeds> target_shapes_;  ///< by object id
 };
 
 }  // namespace ladarsim::sensor_model

@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "ladarsim/scene/animation.h"
 #include "ladarsim/sensor_model/sensor/beam_geometry.h"
 #include "ladarsim/sensor_model/signal/counter_random.h"
 #include "ladarsim/sensor_model/sensor/physical_constants.h"
@@ -76,6 +77,9 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
                                          Eigen::Quaterniond(AngleAxisd(-beam.el_offset_rad, Eigen::Vector3d::UnitY()))});
         }
     }
+    for (const auto& object : scenario.scene.objects)
+        truth_boxes_model_.push_back(scene::animates(*object.model, object.animation) ? scene::animated_bounds(*object.model, object.animation)
+                                                                                      : Eigen::AlignedBox3d());
     if (integrator_.adaptive()) find_neighbours();
     // The lattice shares sub-rays traced from one place along a line: not from a moving platform.
     if (integrator_.adaptive() && !scenario.mount.moves() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
@@ -352,15 +356,22 @@ std::vector<GroundTruthObject> FrameRenderer::ground_truth(double time_s, const 
     const Eigen::Isometry3d sensor_from_world = scenario_.mount.world_from_sensor(time_s).inverse();
     const Eigen::Quaterniond sensor_from_world_rotation(sensor_from_world.linear());
     std::vector<GroundTruthObject> truth;
-    for (const auto& object : scenario_.scene.objects) {
+    for (std::size_t k = 0; k < scenario_.scene.objects.size(); ++k) {
+        const scene::SceneObject& object = scenario_.scene.objects[k];
         const scene::Pose pose = object.trajectory.at(time_s);
+        const Eigen::AlignedBox3d& animated_box = truth_boxes_model_[k];
         GroundTruthObject g;
         g.object_id = object.id;
         g.object_class = std::string(scene::to_string(object.object_class));
         g.name = object.name;
         g.time_s = time_s;
-        g.box_world.centre = object_centre_world(object, time_s);
-        g.box_world.size = object.scale * object.model->bounds().sizes().cast<double>();
+        if (animated_box.isEmpty()) {
+            g.box_world.centre = object_centre_world(object, time_s);
+            g.box_world.size = object.scale * object.model->bounds().sizes().cast<double>();
+        } else {
+            g.box_world.centre = pose.world_from_object() * (object.scale * animated_box.center());
+            g.box_world.size = object.scale * animated_box.sizes();
+        }
         g.box_world.orientation = pose.orientation.normalized();
         g.box_sensor.centre = sensor_from_world * g.box_world.centre;
         g.box_sensor.size = g.box_world.size;

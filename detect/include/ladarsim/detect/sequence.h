@@ -13,6 +13,7 @@
 
 #include "ladarsim/dataset/ground_truth_file.h"
 #include "ladarsim/detect/multi_target.h"
+#include "ladarsim/detect/track_classifier.h"
 #include "ladarsim/detect/tracker.h"
 #include "ladarsim/detect/tracking_metrics.h"
 
@@ -113,7 +114,9 @@ DetectorConfig read_detector_config(const nlohmann::json& options, const std::st
 /// [{track, centre_m, size_m, sensor_box, points, predicted, score}]})} and, when the ground truth
 /// holds `target` (default: default_target), "target". Scores come from scoring.h: of the boxes
 /// (evaluate_report), or with the tracker in the loop (benchmark_report).
+/// With a classifier, each track object also has "class" and "class_confidence": its class from
+/// what the track has shown up to that frame (classify_tracks).
 nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
-                                std::optional<std::uint32_t> target = std::nullopt);
+                                std::optional<std::uint32_t> target = std::nullopt, const TrackClassifier* classifier = nullptr);
 
 }  // namespace ladarsim::detect

@@ -1,6 +1,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,12 +41,18 @@ struct TriangleMesh {
     std::vector<std::uint32_t> triangle_material;
 };
 
+struct Animation;
+
 /// A loaded model: the whole glTF node hierarchy flattened into one mesh in model coordinates.
 struct Model {
     std::string source;  ///< file it came from, for messages
     TriangleMesh mesh;
     std::vector<Material> materials;
+    /// The glTF file's node animations (animation.h), null when it has none. The mesh above is
+    /// the model at rest.
+    std::shared_ptr<const Animation> animation;
 
+    /// The mesh at rest.
     Eigen::AlignedBox3f bounds() const;
     /// True when every material is a volume medium: the model is a fog or cloud volume.
     bool is_volume() const;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "ladarsim/scene/animation.h"
 #include "ladarsim/scene/mesh.h"
 #include "ladarsim/scene/object_class.h"
 #include "ladarsim/scene/trajectory.h"
@@ -25,6 +26,8 @@ struct SceneObject {
     /// Uniform scale applied in the model frame before the pose: world = pose * (scale * p).
     double scale = 1.0;
     Trajectory trajectory = Trajectory::fixed(Pose{});
+    /// Which of the model's animations play (all by default), on top of the trajectory.
+    AnimationChoice animation;
 };
 
 /// A recorded point cloud traced as oriented discs.

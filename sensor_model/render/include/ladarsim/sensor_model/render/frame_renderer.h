@@ -100,6 +100,9 @@ private:
     Eigen::Matrix3d world_from_sensor_rotation_;  ///< a fixed mount's, found once
     /// On a moving platform with a cue, the frame's stare point (stare_point()).
     std::optional<Eigen::Vector3d> stare_point_;
+    /// Per scene object that is animated, the model-frame box over its whole animation, which its
+    /// ground truth is drawn from (every return falls inside it); empty for the others (the mesh's).
+    std::vector<Eigen::AlignedBox3d> truth_boxes_model_;
     std::vector<std::uint8_t> extra_mask_;          ///< by raster cell (row, column): bit k = extra probe k
     std::array<Eigen::Vector2d, 4> extra_offsets_;  ///< left, right, up, down
     double extra_irradiance_ = 0.0;

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# train-classifier on a rendered campaign, detect --classifier, and eval's classification block:
+# the command line end to end (how well it classifies is measured on the bundled datasets, not here).
+source "$(dirname "$0")/harness.sh"
+"$bin" campaign "$src/tests/cli/campaign_classes.json" --out "$work/c" --quiet >/dev/null 2>&1 || fail "the campaign did not render"
+"$bin" train-classifier "$work/c" --out "$work/model.json" >"$work/stdout" 2>&1 || fail "train-classifier failed: $(cat "$work/stdout")"
+grep -q "trained on [0-9]* rows from 4 sequences" "$work/stdout" || fail "train-classifier did not say what it trained on: $(cat "$work/stdout")"
+# A missing campaign and a model file ladarsim did not write are refused in one line.
+"$bin" train-classifier "$work/nowhere" --out "$work/m2.json" >/dev/null 2>"$work/stderr" && fail "train-classifier accepted a missing campaign"
+[ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "the refusal is not one line: $(cat "$work/stderr")"
+echo '{}' >"$work/mine.json"
+"$bin" train-classifier "$work/c" --out "$work/mine.json" >/dev/null 2>&1 && fail "train-classifier replaced a file it did not write"
+test_dir=$(python3 -c 'import json,sys; c=json.load(open(sys.argv[1])); print([s["directory"] for s in c["sequences"] if s["split"]=="test"][0])' "$work/c/campaign.json")
+"$bin" detect "$work/c/$test_dir" --classifier "$work/model.json" --out "$work/d.json" >/dev/null 2>&1 || fail "detect --classifier failed"
+"$bin" eval "$work/c/$test_dir" --detections "$work/d.json" --json "$work/scores.json" >/dev/null 2>&1 || fail "eval failed"
+python3 - "$work/d.json" "$work/scores.json" <<'PY' || fail "classes or classification missing: $(head -c 600 "$work/scores.json")"
+import json, sys
+d = json.load(open(sys.argv[1]))
+objects = [o for f in d["tracks"] for o in f["objects"]]
+assert objects and all(o["class"] in ("drone", "bird", "plane", "clutter") and 0 < o["class_confidence"] <= 1 for o in objects)
+c = json.load(open(sys.argv[2]))["classification"]
+classes = ("drone", "bird", "plane", "clutter")
+assert sum(c["confusion"][t][p] for t in classes for p in classes) == c["tracks"] > 0
+for k in classes:
+    pc = c["per_class"][k]
+    assert pc["tracks"] == sum(c["confusion"][k].values())
+    assert pc["recall"] is None or 0 <= pc["recall"] <= 1
+    assert pc["precision"] is None or 0 <= pc["precision"] <= 1
+assert c["frames_to_settle"]["mean"] >= 1
+PY
+finish "classifier"
