@@ -29,4 +29,14 @@ for k in classes:
     assert pc["precision"] is None or 0 <= pc["precision"] <= 1
 assert c["frames_to_settle"]["mean"] >= 1
 PY
+# Without --classifier detect classifies with the bundled model; `--classifier none` does not.
+"$bin" detect "$work/c/$test_dir" --out "$work/bundled.json" >/dev/null 2>&1 || fail "detect with the bundled classifier failed"
+"$bin" detect "$work/c/$test_dir" --classifier none --out "$work/none.json" >/dev/null 2>&1 || fail "detect --classifier none failed"
+python3 - "$work/bundled.json" "$work/none.json" <<'PY' || fail "the bundled classifier's classes are missing, or --classifier none wrote classes"
+import json, sys
+bundled = [o for f in json.load(open(sys.argv[1]))["tracks"] for o in f["objects"]]
+none = [o for f in json.load(open(sys.argv[2]))["tracks"] for o in f["objects"]]
+assert bundled and all("class" in o and "class_confidence" in o for o in bundled)
+assert none and not any("class" in o for o in none)
+PY
 finish "classifier"
