@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command.h"
+#include "data_dir.h"
 #include "detector_options.h"
 #include "ladarsim/detect/sequence.h"
 #include "ladarsim/core/json_file.h"
@@ -30,7 +31,8 @@ struct DetectCommand {
         detect_cmd->add_option("--out", detections_file, "Detections JSON (default DIR/detections-METHOD.json)");
         detect_cmd->add_flag("--force", force, "Replace the --out file even if ladarsim did not write it");
         detect_cmd->add_option("--classifier", classifier_file,
-                               "Track classifier (`ladarsim train-classifier`): each track gets a class and class_confidence");
+                               "Track classifier (`ladarsim train-classifier`) giving each track a class and class_confidence "
+                               "(default: the bundled one, classifiers/track_classes.json in ladarsim's data; none: no classes)");
         return detect_cmd;
     }
 
@@ -47,7 +49,8 @@ struct DetectCommand {
         else if (sequence.background.empty())
             spdlog::info("{}: background.pcd has 0 points (nothing static in view): nothing to subtract", dataset_dir);
         std::optional<detect::TrackClassifier> classifier;
-        if (!classifier_file.empty()) classifier.emplace(detect::TrackClassifier::load(classifier_file));
+        if (classifier_file.empty()) classifier_file = data_file("classifiers/track_classes.json").string();
+        if (classifier_file != "none") classifier.emplace(detect::TrackClassifier::load(classifier_file));
         const nlohmann::json out =
             detect::detection_report(sequence, options.config(), options.target(), classifier ? &*classifier : nullptr);
         const auto& detections = out["detections"];

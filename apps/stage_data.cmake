@@ -5,6 +5,7 @@
 #   viewer/               the page `view` serves, with the three.js files it imports
 #   scenarios/, models/   the bundled scenarios (bench's default) and the models they name
 #   campaigns/            the bundled campaign specs (their models are ../models/)
+#   classifiers/          the bundled track classifier (`detect`'s default), trained on campaigns/classes.json
 # file(COPY) skips a file whose copy bears its timestamp: a build copies only what changed.
 foreach(script preview plot_eval plot_table1 plot_bench plot_campaign)
   file(COPY ${SOURCE}/scripts/${script}.py DESTINATION ${DEST}/scripts)
@@ -27,3 +28,4 @@ list(FILTER scenarios EXCLUDE REGEX "-autzen\\.json$")
 file(COPY ${scenarios} DESTINATION ${DEST}/scenarios)
 file(COPY ${SOURCE}/assets/models/ DESTINATION ${DEST}/models)
 file(COPY ${SOURCE}/assets/campaigns/ DESTINATION ${DEST}/campaigns)
+file(COPY ${SOURCE}/assets/classifiers/ DESTINATION ${DEST}/classifiers)

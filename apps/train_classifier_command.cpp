@@ -66,6 +66,14 @@ struct TrainClassifierCommand {
         for (std::size_t c = 0; c < detect::kTrackClassCount; ++c)
             std::printf("%s%s %d", c ? ", " : "", std::string(detect::track_class_names()[c]).c_str(), per_class[c]);
         std::printf("); wrote %s\n", model_file.c_str());
+        // What the model learnt from: the features by their share of its gain.
+        const auto importance = model.feature_importance();
+        std::vector<std::size_t> order(importance.size());
+        for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return importance[a] > importance[b]; });
+        std::printf("features by share of the gain:");
+        for (std::size_t k : order) std::printf(" %s %.3f", std::string(detect::track_feature_names()[k]).c_str(), importance[k]);
+        std::printf("\n");
         return 0;
     }
 };

@@ -1,9 +1,11 @@
 #include "ladarsim/detect/track_classification.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 
 #include "ladarsim/detect/sequence.h"
+#include "ladarsim/detect/tracking_metrics.h"
 
 namespace ladarsim::detect {
 namespace {
@@ -32,18 +34,33 @@ std::vector<TrackHistory> track_histories(const std::vector<double>& time_s, con
     return out;
 }
 
-std::size_t followed_class(const TrackHistory& history, const std::vector<std::vector<TruthCentre>>& truth) {
+std::vector<std::vector<FollowableObject>> followable_truth(const Sequence& s) {
+    std::vector<std::vector<FollowableObject>> out;
+    const auto truth = tracking_truth(s);
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        out.emplace_back();
+        for (const TruthCentre& o : truth[i]) {
+            const auto box = truth_box(s, i, o.id);
+            out.back().push_back({o.object_class, o.centre, box ? box->size : Eigen::Vector3d::Zero()});
+        }
+    }
+    return out;
+}
+
+std::size_t followed_class(const TrackHistory& history, const std::vector<std::vector<FollowableObject>>& truth) {
     std::array<int, kTrackClassCount> votes{};
     for (std::size_t k = 0; k < history.frames.size(); ++k) {
         const TrackSample& s = history.samples[k];
         if (s.predicted) continue;
         const std::size_t frame = history.frames[k];
-        const TruthCentre* nearest = nullptr;
-        double best = kFollowGate_m;
+        const FollowableObject* nearest = nullptr;
+        double best = std::numeric_limits<double>::infinity();
         if (frame < truth.size())
-            for (const TruthCentre& o : truth[frame]) {
-                const double d = (o.centre - s.centre).norm();
-                if (d <= best) best = d, nearest = &o;
+            for (const FollowableObject& o : truth[frame]) {
+                const Eigen::Vector3d offset = s.centre - o.centre;
+                const bool inside = (offset.cwiseAbs().array() <= 0.5 * o.size.array()).all();
+                const double d = offset.norm();
+                if ((d <= kFollowGate_m || inside) && d < best) best = d, nearest = &o;
             }
         const std::size_t c = nearest ? track_class_index(nearest->object_class) : track_class_index("clutter");
         ++votes[std::min(c, kTrackClassCount - 1)];
@@ -53,11 +70,12 @@ std::size_t followed_class(const TrackHistory& history, const std::vector<std::v
 
 void add_training_rows(const Sequence& s, const DetectorConfig& config, std::vector<TrackFeatures>& features,
                        std::vector<std::size_t>& labels) {
-    const auto truth = tracking_truth(s);
+    const auto truth = followable_truth(s);
     for (const TrackHistory& h : track_histories(s.time_s, track_sequence(s, config))) {
         const std::size_t label = followed_class(h, truth);
         std::vector<TrackSample> prefix;
-        for (std::size_t n = 4; n < h.samples.size(); n *= 2) {
+        // Doubling up to the feature window, then a window's half at a time.
+        for (std::size_t n = 4; n < h.samples.size(); n += std::min(n, kTrackFeatureFrames / 2)) {
             prefix.assign(h.samples.begin(), h.samples.begin() + static_cast<std::ptrdiff_t>(n));
             features.push_back(track_features(prefix));
             labels.push_back(label);
@@ -110,7 +128,7 @@ nlohmann::json classification_scores(const Sequence& s, const nlohmann::json& tr
         }
     }
     if (!any_class) return nullptr;
-    const auto truth = tracking_truth(s);
+    const auto truth = followable_truth(s);
     const auto& names = track_class_names();
     std::array<std::array<int, kTrackClassCount>, kTrackClassCount> confusion{};
     std::vector<double> settle;

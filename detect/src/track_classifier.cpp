@@ -1,6 +1,8 @@
 #include "ladarsim/detect/track_classifier.h"
 
 #include <limits>
+#include <string>
+#include <vector>
 #include <stdexcept>
 #include <system_error>
 
@@ -84,6 +86,11 @@ TrackClassifier TrackClassifier::train(const std::vector<TrackFeatures>& feature
     set("nthread", "1");
     set("tree_method", "hist");
     set("verbosity", "0");
+    // Named, so that the model carries the names of the features it was trained on.
+    const std::vector<std::string> names(track_feature_names().begin(), track_feature_names().end());
+    std::vector<const char*> c_names;
+    for (const std::string& n : names) c_names.push_back(n.c_str());
+    check(XGBoosterSetStrFeatureInfo(booster->handle, "feature_name", c_names.data(), c_names.size()), "naming the features");
     for (int i = 0; i < settings.rounds; ++i) check(XGBoosterUpdateOneIter(booster->handle, i, train.handle), "training");
     return TrackClassifier(std::move(booster));
 }
@@ -94,6 +101,16 @@ TrackClassifier TrackClassifier::load(const std::filesystem::path& file) {
     auto booster = std::make_unique<Booster>();
     if (XGBoosterLoadModel(booster->handle, file.c_str()) != 0) throw InputError(file.string(), "model", XGBGetLastError());
     check(XGBoosterSetParam(booster->handle, "nthread", "1"), "nthread");
+    // A model trained on other features (an older ladarsim's) would read ours as its own.
+    bst_ulong count = 0;
+    const char** names = nullptr;
+    check(XGBoosterGetStrFeatureInfo(booster->handle, "feature_name", &count, &names), "reading the feature names");
+    const auto& ours = track_feature_names();
+    bool same = count == ours.size();
+    for (bst_ulong i = 0; same && i < count; ++i) same = names[i] == ours[i];
+    if (!same)
+        throw InputError(file.string(), "features",
+                         "the model was trained on other track features than this ladarsim computes: train it again (`ladarsim train-classifier`)");
     return TrackClassifier(std::move(booster));
 }
 
@@ -104,6 +121,25 @@ void TrackClassifier::save(const std::filesystem::path& file) const {
     std::error_code ec;
     std::filesystem::rename(tmp, file, ec);
     if (ec) throw InputError(file.string(), "write", ec.message());
+}
+
+std::array<double, kTrackFeatureCount> TrackClassifier::feature_importance() const {
+    bst_ulong count = 0, dim = 0;
+    const char** names = nullptr;
+    const bst_ulong* shape = nullptr;
+    const float* scores = nullptr;
+    check(XGBoosterFeatureScore(booster_->handle, R"({"importance_type": "total_gain"})", &count, &names, &dim, &shape, &scores),
+          "scoring the features");
+    std::array<double, kTrackFeatureCount> out{};
+    const auto& ours = track_feature_names();
+    double total = 0.0;
+    // Only the features some split uses are listed.
+    for (bst_ulong i = 0; i < count; ++i)
+        for (std::size_t k = 0; k < kTrackFeatureCount; ++k)
+            if (ours[k] == names[i]) out[k] = scores[i], total += scores[i];
+    if (total > 0.0)
+        for (double& v : out) v /= total;
+    return out;
 }
 
 std::vector<TrackClass> TrackClassifier::classify(const std::vector<TrackFeatures>& features) const {

@@ -5,6 +5,7 @@ source "$(dirname "$0")/harness.sh"
 "$bin" campaign "$src/tests/cli/campaign_classes.json" --out "$work/c" --quiet >/dev/null 2>&1 || fail "the campaign did not render"
 "$bin" train-classifier "$work/c" --out "$work/model.json" >"$work/stdout" 2>&1 || fail "train-classifier failed: $(cat "$work/stdout")"
 grep -q "trained on [0-9]* rows from 4 sequences" "$work/stdout" || fail "train-classifier did not say what it trained on: $(cat "$work/stdout")"
+grep -q "features by share of the gain: [a-z_0-9]* [01]\.[0-9]*" "$work/stdout" || fail "train-classifier did not say which features mattered: $(cat "$work/stdout")"
 # A missing campaign and a model file ladarsim did not write are refused in one line.
 "$bin" train-classifier "$work/nowhere" --out "$work/m2.json" >/dev/null 2>"$work/stderr" && fail "train-classifier accepted a missing campaign"
 [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "the refusal is not one line: $(cat "$work/stderr")"
@@ -27,5 +28,15 @@ for k in classes:
     assert pc["recall"] is None or 0 <= pc["recall"] <= 1
     assert pc["precision"] is None or 0 <= pc["precision"] <= 1
 assert c["frames_to_settle"]["mean"] >= 1
+PY
+# Without --classifier detect classifies with the bundled model; `--classifier none` does not.
+"$bin" detect "$work/c/$test_dir" --out "$work/bundled.json" >/dev/null 2>&1 || fail "detect with the bundled classifier failed"
+"$bin" detect "$work/c/$test_dir" --classifier none --out "$work/none.json" >/dev/null 2>&1 || fail "detect --classifier none failed"
+python3 - "$work/bundled.json" "$work/none.json" <<'PY' || fail "the bundled classifier's classes are missing, or --classifier none wrote classes"
+import json, sys
+bundled = [o for f in json.load(open(sys.argv[1]))["tracks"] for o in f["objects"]]
+none = [o for f in json.load(open(sys.argv[2]))["tracks"] for o in f["objects"]]
+assert bundled and all("class" in o and "class_confidence" in o for o in bundled)
+assert none and not any("class" in o for o in none)
 PY
 finish "classifier"

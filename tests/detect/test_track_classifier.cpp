@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <random>
 
 #include "ladarsim/core/input_error.h"
@@ -78,4 +80,42 @@ TEST_CASE("the classifier refuses no data and bad labels, and names a missing or
     }
     CHECK(track_class_index("bird") == 1u);
     CHECK(track_class_index("tree") == kTrackClassCount);
+}
+
+TEST_CASE("the features that separate the classes carry the model's gain", "[track_classifier]") {
+    std::vector<TrackFeatures> x;
+    std::vector<std::size_t> y;
+    synthetic(3, 100, x, y);
+    const auto importance = TrackClassifier::train(x, y).feature_importance();
+    double total = 0.0;
+    for (double v : importance) total += v;
+    CHECK(total == Approx(1.0));
+    // Speed, extent and flicker separate them; the rest is noise.
+    CHECK(importance[0] + importance[6] + importance[10] > 0.9);
+}
+
+TEST_CASE("a model trained on other features is refused, naming the file", "[track_classifier]") {
+    std::vector<TrackFeatures> x;
+    std::vector<std::size_t> y;
+    synthetic(4, 20, x, y);
+    test::ScratchDir dir;
+    TrackClassifier::train(x, y).save(dir / "model.json");
+    std::string text;
+    {
+        std::ifstream in(dir / "model.json");
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // An older ladarsim's model: one feature it knew by another name.
+    const std::string ours = "\"" + std::string(track_feature_names()[9]) + "\"";
+    const auto at = text.find(ours);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, ours.size(), "\"returns_sd\"");
+    std::ofstream(dir / "old.json") << text;
+    try {
+        TrackClassifier::load(dir / "old.json");
+        FAIL("a model of other features was read");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("old.json") != std::string::npos);
+        CHECK(std::string(e.what()).find("features") != std::string::npos);
+    }
 }

@@ -94,3 +94,44 @@ TEST_CASE("predicted frames count for the flicker's clock but not for motion", "
     CHECK(feature(f, "speed_mps") == Approx(2.0).epsilon(1e-4));
     CHECK(feature(f, "frames_seen") == Approx(7.0));
 }
+
+TEST_CASE("a steady climb is no bobbing, a wing's flicker is high and a slow weave's is not", "[track_features]") {
+    std::vector<TrackSample> samples;
+    for (int i = 0; i < 64; ++i) {
+        TrackSample s;
+        s.time_s = 0.05 * i;
+        // Descending 0.3 m/s towards the sensor, as a drone approaching from above does.
+        s.centre = {450.0 - 6.0 * s.time_s, 0.0, 27.0 - 0.3 * s.time_s};
+        // Its count growing as it nears, with a 0.4 Hz weave.
+        s.points = static_cast<std::size_t>(std::lround(40.0 + 3.0 * s.time_s + 6.0 * std::sin(2.0 * M_PI * 0.4 * s.time_s)));
+        samples.push_back(s);
+    }
+    TrackFeatures f = track_features(samples);
+    CHECK(feature(f, "climb_rate_mps") == Approx(0.3).epsilon(1e-3));
+    CHECK(feature(f, "altitude_sd_m") == Approx(0.0).margin(1e-4));
+    CHECK(feature(f, "flicker_high_fraction") < 0.1);
+    // Bobbing 5 cm at 6 Hz with the wing, and the count beating with it.
+    for (auto& s : samples) {
+        s.centre.z() += 0.05 * std::sin(2.0 * M_PI * 6.0 * s.time_s);
+        s.points += static_cast<std::size_t>(std::lround(8.0 + 8.0 * std::sin(2.0 * M_PI * 6.0 * s.time_s)));
+    }
+    f = track_features(samples);
+    CHECK(feature(f, "altitude_sd_m") == Approx(0.05 / std::sqrt(2.0)).epsilon(0.1));
+    CHECK(feature(f, "flicker_high_fraction") > 0.5);
+}
+
+TEST_CASE("a track's features come from its latest 64 frames", "[track_features]") {
+    std::vector<TrackSample> samples;
+    for (int i = 0; i < 200; ++i) {
+        TrackSample s;
+        s.time_s = 0.05 * i;
+        // 2 m/s for 136 frames, then 8 m/s.
+        s.centre = {i < 136 ? 2.0 * s.time_s : 2.0 * 6.8 + 8.0 * (s.time_s - 6.8), 0.0, 30.0};
+        s.points = i < 136 ? 5 : 30;
+        samples.push_back(s);
+    }
+    const TrackFeatures f = track_features(samples);
+    CHECK(feature(f, "speed_mps") == Approx(8.0).epsilon(1e-3));
+    CHECK(feature(f, "returns") == Approx(30.0));
+    CHECK(feature(f, "frames_seen") == Approx(static_cast<double>(kTrackFeatureFrames)));
+}

@@ -3,14 +3,15 @@
 // the ground truth, training rows from rendered sequences, and the class of each track in each
 // frame from what it has shown so far.
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "ladarsim/detect/multi_target.h"
 #include "ladarsim/detect/track_classifier.h"
 #include "ladarsim/detect/track_features.h"
-#include "ladarsim/detect/tracking_metrics.h"
 
 namespace ladarsim::detect {
 
@@ -30,14 +31,26 @@ std::vector<TrackHistory> track_histories(const std::vector<double>& time_s, con
 /// Centre distance within which a track's box follows a ground-truth object (eval's tracking gate).
 inline constexpr double kFollowGate_m = 2.0;
 
-/// What a track follows: the class (index into track_class_names()) of the nearest ground-truth
-/// drone, bird or aircraft within kFollowGate_m of its centre in most of the frames it was seen
-/// in (not predicted); clutter when that is none. `truth` as tracking_truth gives it.
-std::size_t followed_class(const TrackHistory& history, const std::vector<std::vector<TruthCentre>>& truth);
+/// A drone, bird or aircraft with returns in one frame, as a track may follow it: its class and
+/// its box (truth_box: axis-aligned in the sensor frame).
+struct FollowableObject {
+    std::string object_class;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    Eigen::Vector3d size = Eigen::Vector3d::Zero();
+};
 
-/// Rows to train on from one rendered sequence: each track's features after 4, 8, 16, 32, ...
-/// frames and at its end (a classifier must answer early in a track too), labelled with
-/// followed_class.
+/// The objects a track may follow in each frame of `s` (those of tracking_truth, with their boxes).
+std::vector<std::vector<FollowableObject>> followable_truth(const Sequence& s);
+
+/// What a track follows: in each frame it was seen in (not predicted), the nearest object whose
+/// centre is within kFollowGate_m of the track's or whose box holds the track's centre (a track on
+/// one wing of an aircraft follows the aircraft, metres from its centre); the class (index into
+/// track_class_names()) followed in most of those frames, clutter when that is none.
+std::size_t followed_class(const TrackHistory& history, const std::vector<std::vector<FollowableObject>>& truth);
+
+/// Rows to train on from one rendered sequence: each track's features after 4, 8, 16, 32, 64 frames
+/// (a classifier must answer early in a track too), every 32 frames after that, and at its end,
+/// labelled with followed_class.
 void add_training_rows(const Sequence& s, const DetectorConfig& config, std::vector<TrackFeatures>& features,
                        std::vector<std::size_t>& labels);
 

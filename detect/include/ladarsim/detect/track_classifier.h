@@ -38,7 +38,8 @@ public:
     /// Throws std::invalid_argument for no rows or a label out of range.
     static TrackClassifier train(const std::vector<TrackFeatures>& features, const std::vector<std::size_t>& labels,
                                  const ClassifierTraining& settings = {});
-    /// Reads a model that save() wrote. Throws InputError naming the file.
+    /// Reads a model that save() wrote. Throws InputError naming the file when it is missing, is no
+    /// model, or was trained on other features than track_feature_names().
     static TrackClassifier load(const std::filesystem::path& file);
 
     TrackClassifier(TrackClassifier&&) noexcept;
@@ -47,6 +48,9 @@ public:
 
     /// Writes the model (XGBoost JSON) to a temporary name and renames it into place.
     void save(const std::filesystem::path& file) const;
+    /// What each feature (track_feature_names() order) did for the model: its share of the total
+    /// gain of the splits on it (summing to 1; 0 for a feature no split uses).
+    std::array<double, kTrackFeatureCount> feature_importance() const;
     /// The most probable class of each row.
     std::vector<TrackClass> classify(const std::vector<TrackFeatures>& features) const;
 
