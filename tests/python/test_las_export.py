@@ -145,3 +145,45 @@ def test_a_user_s_file_is_kept_and_bad_input_refused_in_one_line(cli_small, tmp_
         result = subprocess.run([str(CLI), "export-las", *map(str, args)], capture_output=True, text=True)
         assert result.returncode == 2 and word in result.stderr and len(result.stderr.strip().splitlines()) == 1, result.stderr
     assert (tmp_path / "plain" / "000000.las").read_text() == "not ladarsim's"
+
+
+def test_world_coordinates_of_a_moving_platform_are_each_return_placed_by_the_pose_at_its_time(tmp_path):
+    """tests/cli/small.json from a platform driving at 20 m/s along x and yawing 3 deg at 2 Hz: the
+    world LAS must hold each sensor-frame return moved by the platform's pose at that return's own
+    time, computed here from the scenario alone (a frame's start pose would be off by metres)."""
+    scenario = json.loads(SMALL.read_text())
+    start, velocity, amplitude, frequency, phase = np.array([0.0, 0.0, 2.0]), np.array([20.0, 0.0, 0.0]), 3.0, 2.0, 30.0
+    del scenario["sensor"]["position_m"]
+    scenario["sensor"]["trajectory"] = {"type": "straight", "start_m": start.tolist(), "velocity_mps": velocity.tolist()}
+    scenario["sensor"]["sway"] = {"components": [{"axis": "yaw", "amplitude_deg": amplitude, "frequency_hz": frequency,
+                                                  "phase_deg": phase}]}
+    for o in scenario["objects"]:
+        o["model"] = str(SMALL.parent / o["model"])
+    (tmp_path / "scenario.json").write_text(json.dumps(scenario))
+    run_cli("render", tmp_path / "scenario.json", "--out", tmp_path / "d", "--quiet")
+    run_cli("export-las", tmp_path / "d", "--out", tmp_path / "sensor")
+    run_cli("export-las", tmp_path / "d", "--out", tmp_path / "world", "--world")
+    # Allowed: the two files' 0.1 mm quantisation (a rotated sensor-frame coordinate mixes two) and
+    # the slerp between the trajectory's 1 ms samples, within (2 pi f)^2 A dt^2 / 8 of the true angle
+    # (docs/scenario.md), times the return's range.
+    angle_bound = (2 * np.pi * frequency) ** 2 * np.radians(amplitude) * 1e-3 ** 2 / 8
+    worst, worst_frame_start = 0.0, 0.0
+    for k in range(scenario["render"]["frames"]):
+        header, _, las = read_las(tmp_path / "world" / f"{k:06d}.las")
+        sensor_header, _, sensor_las = read_las(tmp_path / "sensor" / f"{k:06d}.las")
+        assert header["count"] == sensor_header["count"] > 0
+        p = positions(sensor_header, sensor_las)
+        t = sensor_las["gps_time"]
+        yaw = np.radians(amplitude * np.sin(2 * np.pi * frequency * t + np.radians(phase)))
+        c, s = np.cos(yaw), np.sin(yaw)
+        expected = np.stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1], p[:, 2]], axis=1)
+        expected += start + np.outer(t, velocity)
+        allowed = (np.sqrt(2) + 1) * 0.5e-4 + angle_bound * np.linalg.norm(p, axis=1) + 1e-9
+        worst = max(worst, (np.abs(positions(header, las) - expected).max(axis=1) / allowed).max())
+        t0 = np.full_like(t, t.min())
+        yaw0 = np.radians(amplitude * np.sin(2 * np.pi * frequency * t0 + np.radians(phase)))
+        at_start = np.stack([np.cos(yaw0) * p[:, 0] - np.sin(yaw0) * p[:, 1], np.sin(yaw0) * p[:, 0] + np.cos(yaw0) * p[:, 1],
+                             p[:, 2]], axis=1) + start + np.outer(t0, velocity)
+        worst_frame_start = max(worst_frame_start, np.abs(positions(header, las) - at_start).max())
+    assert worst <= 1.0, f"a return is {worst:.2f} times the allowed distance from where the pose at its time puts it"
+    assert worst_frame_start > 0.1, "the platform should move enough in a frame for the check to tell the poses apart"
