@@ -77,6 +77,7 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         }
     }
     if (integrator_.adaptive()) find_neighbours();
+    integrator_.share_map_rows(raster_);
     if (integrator_.adaptive() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
         target_lattice_ = std::make_unique<TargetLattice>(traced_, raster_, integrator_.shape(), radiometry_, integrator_.grid_base(),
                                                           scenario.mount.position_world,
@@ -205,6 +206,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
         const RasterBeam beam = raster_.beam(row, step);
         aims_[static_cast<std::size_t>(row * columns + beam.column)] = aim(beam, step, gimbal, frame_start_s);
     }
+    integrator_.start_map_row(row, world_from_sensor_rotation_ * gimbal.toRotationMatrix());
     if (!integrator_.adaptive()) return 0;
 
     thread_local std::vector<raytrace::Ray> rays;
