@@ -19,6 +19,10 @@ constexpr int kMaxCuts = 32;
 constexpr double kMinGapWeight = 1e-5;
 /// Lines whose discs one query of the map's hierarchy finds (a cone around them all).
 constexpr int kLinesPerQuery = 16;
+/// A row's lines, footprints included, within this of its middle azimuth: a line is (1, tan of its
+/// azimuth from the middle, t), which turns back at a quarter turn (a spinning sensor's row goes
+/// all the way round: the VLP-16 found a third of its recorded returns again).
+constexpr double kMaxAzimuthFromMiddle = M_PI / 3.0;
 
 }  // namespace
 
@@ -28,11 +32,16 @@ bool MapRows::applicable(const ScanPattern& raster, const BeamShape& shape) {
     if (!(pitch > 0.0) || pitch >= 2.0 * shape.footprint().max_offset_rad()) return false;
     for (int row = 0; row < raster.rows(); ++row) {
         const RasterBeam first = raster.beam(row, 0);
+        double lo = first.az_offset_rad, hi = first.az_offset_rad;
         for (int step = 1; step < raster.columns(); ++step) {
             const RasterBeam b = raster.beam(row, step), before = raster.beam(row, step - 1);
             if (b.el_offset_rad != first.el_offset_rad) return false;
             if (std::abs(std::abs(b.az_offset_rad - before.az_offset_rad) - pitch) > 1e-9 * pitch) return false;
+            lo = std::min(lo, b.az_offset_rad);
+            hi = std::max(hi, b.az_offset_rad);
         }
+        const double reach = shape.footprint().max_offset_rad() / std::cos(first.el_offset_rad) + pitch;
+        if (!(0.5 * (hi - lo) + reach < kMaxAzimuthFromMiddle)) return false;
     }
     return true;
 }
