@@ -7,16 +7,12 @@
 
 #include "ladarsim/scene/scene.h"
 #include "ladarsim/sensor_model/footprint/disc_chords.h"
+#include "map_pieces.h"
 
 namespace ladarsim::sensor_model {
 
 namespace {
 
-/// As MapScanline's: a piece's range span stays within this many pulse sigmas (the receiver
-/// stretches each echo as a Gaussian of the piece's spread), gaps below this weight take no echo.
-constexpr double kSpanOverPulseSigma = 1.0;
-constexpr int kMaxCuts = 32;
-constexpr double kMinGapWeight = 1e-5;
 /// Lines whose discs one query of the map's hierarchy finds (a cone around them all).
 constexpr int kLinesPerQuery = 16;
 /// A row's lines, footprints included, within this of its middle azimuth: a line is (1, tan of its
@@ -25,6 +21,8 @@ constexpr int kLinesPerQuery = 16;
 constexpr double kMaxAzimuthFromMiddle = M_PI / 3.0;
 
 }  // namespace
+
+using namespace map_pieces;
 
 bool MapRows::applicable(const ScanPattern& raster, const BeamShape& shape) {
     if (raster.columns() < 2) return false;

@@ -4,20 +4,11 @@
 #include <cmath>
 
 #include "ladarsim/scene/scene.h"
+#include "map_pieces.h"
 
 namespace ladarsim::sensor_model {
 
-namespace {
-
-/// A piece whose range span exceeds this many pulse sigmas is cut into pieces that do not: the
-/// receiver stretches each echo as a Gaussian of the piece's spread, which is a box's only while it
-/// is narrow against the pulse.
-constexpr double kSpanOverPulseSigma = 1.0;
-constexpr int kMaxCuts = 32;
-/// Gaps carrying less of the beam than this are not worth a ray.
-constexpr double kMinGapWeight = 1e-5;
-
-}  // namespace
+using namespace map_pieces;
 
 MapScanline::MapScanline(const FootprintContext& context, const MapDiscs& discs, int lines, int rays_per_line, const BeamCone* cone)
     : context_(context), discs_(discs), cone_(cone), rays_per_line_(rays_per_line),
