@@ -325,7 +325,9 @@ json run_case(const HardCase& c, const BenchOptions& options, const std::vector<
         options.progress("hard case: " + c.name + ", reference at twice its lines");
         const BeamErrors self = compare_beams(c, render_frames(reference_of(2 * c.reference_lines), c.frames), reference);
         about_reference = {{"method", "scanline over the map's discs, " + std::to_string(c.reference_lines) + " lines a beam, " +
-                                          std::to_string(kReferenceSamples / c.reference_lines) + " rays a line for other objects"},
+                                          std::to_string(kReferenceSamples / c.reference_lines) +
+                                          " rays a line for other objects, split over a target's outline into cells as fine "
+                                          "across the line as the lines are apart"},
                            {"against", std::to_string(2 * c.reference_lines) + " lines"},
                            {"self_difference_mean_mm", self.range_error_mm},
                            {"self_difference_median_mm", self.median_range_error_mm},

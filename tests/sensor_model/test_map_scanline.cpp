@@ -7,6 +7,7 @@
 
 #include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "../support/closed_form_scenario.h"
+#include "../support/scene_builders.h"
 #include "../support/sensors.h"
 
 using namespace ladarsim;
@@ -54,4 +55,31 @@ TEST_CASE("a flat wall of discs filling every footprint returns its range and th
             CHECK(r.intensity == Approx(extended_target_photoelectrons(s.sensor, kReflectance, cos_axis, range)).epsilon(1e-3));
         }
     }
+}
+
+TEST_CASE("the map's reference converges on a target thinner than its cells across a line", "[footprint][map]") {
+    // A horizontal sliver 2 cm tall at 300 m (a wing edge-on) before the wall: 8 rays a line split
+    // a footprint into cells 35 mm tall there, each given whole to whatever its ray met, so the
+    // sliver took whole cells where rays hit it and nothing where they passed it by.
+    auto sliver = std::make_shared<scene::Model>();
+    for (const double y : {-0.3, 0.3})
+        for (const double z : {-0.01, 0.01}) sliver->mesh.positions.emplace_back(0.0f, static_cast<float>(y), static_cast<float>(z));
+    sliver->mesh.triangles = {{0u, 1u, 3u}, {0u, 3u, 2u}};
+    sliver->mesh.triangle_material = {0, 0};
+    sliver->materials = {scene::Material{"sliver", 0.5}};
+    auto with_lines = [&](int lines) {
+        Scenario s = disc_wall_scenario();
+        s.render.noise = false;
+        s.render.footprint_samples = 1024;
+        s.render.footprint_map_lines = lines;
+        s.scene.objects.push_back(object_at(7, sliver, fixed_at(300.0, 0.0, 0.01)));
+        FrameRenderer renderer(s);
+        double energy = 0.0;
+        for (const Return& r : renderer.render(0).returns)
+            if (r.object_id == 7) energy += r.intensity;
+        return energy;
+    };
+    const double coarse = with_lines(128), fine = with_lines(256);
+    REQUIRE(fine > 0.0);
+    CHECK(coarse == Approx(fine).epsilon(0.05));
 }

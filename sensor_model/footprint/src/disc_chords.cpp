@@ -5,7 +5,7 @@
 
 namespace ladarsim::sensor_model {
 
-bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, double X, double t_max, DiscChord& out) {
+bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, double X, double t_min, double t_max, DiscChord& out) {
     // The plane of the line's directions has normal m = (X, -1, 0); it cuts the disc's plane along
     // l = m x n, and the disc where the cut passes within r of its centre: at mu = -(m . p) / |l|
     // along u = n x l / |l| (m . (n x l) = |l|^2). Written out by component: every beam asks
@@ -24,7 +24,7 @@ bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, do
     const double ax = q0x + hlx, bx = q0x - hlx;
     if (!(ax > 0.0 && bx > 0.0)) return false;
     const double ta = (q0z + hlz) / ax, tb = (q0z - hlz) / bx;
-    out.t_lo = std::max(std::min(ta, tb), -t_max);
+    out.t_lo = std::max(std::min(ta, tb), t_min);
     out.t_hi = std::min(std::max(ta, tb), t_max);
     if (!(out.t_lo < out.t_hi)) return false;
     // Along (1, X, t) the plane n . (q - p) = 0 is at distance s = (n . p) / (n . (1, X, t)).

@@ -10,6 +10,7 @@
 #include "footprint_context.h"
 #include "ladarsim/sensor_model/footprint/target_lattice.h"
 #include "map_discs.h"
+#include "map_rows.h"
 #include "map_scanline.h"
 #include "plane_patch.h"
 #include "recorded_map_sampling.h"
@@ -37,6 +38,8 @@ constexpr std::uint32_t kComplementSamples = 1u << 23;  // above any region's ce
 constexpr double kBrightTargetThresholds = 3.0;
 /// Lines across a footprint over a recorded map.
 constexpr int kMapLines = 32;
+/// Lines a raster row shares over a recorded map, per step between its beams (MapRows).
+constexpr int kMapLinesPerPitch = 2;
 
 }  // namespace
 
@@ -58,7 +61,7 @@ struct FootprintIntegrator::Strategies {
           footprint_cells(context, {kFootprintBase, kFootprintSamples, false}, &edge, &map) {
         if (map_discs && !map_discs->points_world.empty()) discs.emplace(*map_discs, settings.origin_world);
         if (discs && !context.adaptive && settings.map_lines > 0)
-            map_reference.emplace(context, *discs, settings.map_lines, std::max(1, settings.samples / settings.map_lines));
+            map_reference.emplace(context, *discs, settings.map_lines, std::max(1, settings.samples / settings.map_lines), &cone);
         if (discs && context.adaptive) {
             map_lines.emplace(context, *discs, kMapLines, 0);
             map.integrate_along_lines(&*map_lines);
@@ -86,6 +89,8 @@ struct FootprintIntegrator::Strategies {
     std::optional<MapDiscs> discs;
     std::optional<MapScanline> map_reference;  ///< fixed sub-rays' counterpart over a recorded map (settings.map_lines)
     std::optional<MapScanline> map_lines;      ///< the recorded map's footprints where the map strategy takes them
+    std::optional<MapRows> map_rows;           ///< map_lines' visibility shared by a row's beams, where the raster allows
+    const FootprintStrategy& over_map() const { return map_rows ? static_cast<const FootprintStrategy&>(*map_rows) : *map_lines; }
 };
 
 FootprintIntegrator::FootprintIntegrator(const FootprintSettings& settings, const Sensor& sensor,
@@ -100,6 +105,16 @@ const BeamShape& FootprintIntegrator::shape() const { return s_->context.shape; 
 int FootprintIntegrator::grid_base() const { return s_->context.grid_base; }
 std::size_t FootprintIntegrator::map_samples() const { return s_->context.outline_samples; }
 void FootprintIntegrator::share_target_sub_rays(const TargetLattice* lattice) { s_->target_lattice = lattice; }
+
+bool FootprintIntegrator::share_map_rows(const ScanPattern& raster) {
+    if (!s_->map_lines || !MapRows::applicable(raster, s_->context.shape)) return false;
+    s_->map_rows.emplace(s_->context, *s_->discs, raster, kMapLinesPerPitch);
+    return true;
+}
+
+void FootprintIntegrator::start_map_row(int row, const Eigen::Matrix3d& world_from_gimbal) {
+    if (s_->map_rows) s_->map_rows->start_row(row, world_from_gimbal);
+}
 
 void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const {
     out.surface.clear();
@@ -135,7 +150,7 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
         return;
     }
     if (s_->map_lines && s_->map.met_by(witnesses)) {
-        s_->map_lines->integrate(beam, whole, out);
+        s_->over_map().integrate(beam, whole, out);
         return;
     }
     const Outcome patch = s_->plane.integrate(beam, whole, out).outcome;
@@ -184,7 +199,7 @@ void FootprintIntegrator::Strategies::integrate_targets(const BeamSetting& beam,
     const double rest = 1.0 - sampled;
     const FootprintPart rest_part{context.shape.footprint().square(), *targets.outline, rest, kComplementSamples};
     if (rest > 1e-9 && !beam.media && map_lines && map.met_by(witnesses)) {
-        map_lines->integrate(beam, rest_part, out);
+        over_map().integrate(beam, rest_part, out);
         return;
     }
     const Outcome patch = rest > 1e-9 && !beam.media ? plane.integrate(beam, rest_part, out).outcome : Outcome::declined;

@@ -4,23 +4,15 @@
 #include <cmath>
 
 #include "ladarsim/scene/scene.h"
+#include "map_pieces.h"
 
 namespace ladarsim::sensor_model {
 
-namespace {
+using namespace map_pieces;
 
-/// A piece whose range span exceeds this many pulse sigmas is cut into pieces that do not: the
-/// receiver stretches each echo as a Gaussian of the piece's spread, which is a box's only while it
-/// is narrow against the pulse.
-constexpr double kSpanOverPulseSigma = 1.0;
-constexpr int kMaxCuts = 32;
-/// Gaps carrying less of the beam than this are not worth a ray.
-constexpr double kMinGapWeight = 1e-5;
-
-}  // namespace
-
-MapScanline::MapScanline(const FootprintContext& context, const MapDiscs& discs, int lines, int rays_per_line)
-    : context_(context), discs_(discs), rays_per_line_(rays_per_line) {
+MapScanline::MapScanline(const FootprintContext& context, const MapDiscs& discs, int lines, int rays_per_line, const BeamCone* cone)
+    : context_(context), discs_(discs), cone_(cone), rays_per_line_(rays_per_line),
+      dense_split_(rays_per_line > 0 ? std::max(1, (lines + rays_per_line - 1) / rays_per_line) : 1) {
     const Footprint& footprint = context.shape.footprint();
     const double rho = footprint.max_offset_rad();
     const double ell = context.shape.ellipticity();
@@ -115,6 +107,15 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
         std::uint32_t line;
         double t_lo, t_hi;
     };
+    // Where a target may lie, the reference's cells are as fine across a line as the lines are
+    // apart: a bird's wing edge-on is a sliver thinner than a coarse cell, which one discretisation
+    // hits (and gives the whole cell) and another misses.
+    thread_local TargetsInCone targets;
+    std::optional<FootprintRect> outline;
+    if (rays_per_line_ > 0 && cone_) {
+        cone_->find(beam.aim, targets);
+        outline = targets.outline;
+    }
     thread_local std::vector<Cell> cells;
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
@@ -124,13 +125,19 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
         const Line& line = lines_[k];
         if (rays_per_line_ > 0) {
             const double c0 = footprint.axis_cdf(-line.y_max_rad), c1 = footprint.axis_cdf(line.y_max_rad);
+            const bool across = outline && line.x_rad >= outline->x_lo && line.x_rad <= outline->x_hi;
             for (int j = 0; j < rays_per_line_; ++j) {
-                const double ya = footprint.axis_offset(c0 + (c1 - c0) * j / rays_per_line_);
-                const double yb = footprint.axis_offset(c0 + (c1 - c0) * (j + 1) / rays_per_line_);
-                const double ym = footprint.axis_offset(c0 + (c1 - c0) * (j + 0.5) / rays_per_line_);
-                if (part.excluded && footprint.contains(*part.excluded, line.x_rad, ym)) continue;
-                cells.push_back({k, j == 0 ? -line.t_max : std::tan(ya * ell), j + 1 == rays_per_line_ ? line.t_max : std::tan(yb * ell)});
-                rays.push_back(context_.ray(beam.aim, line.x_rad, ym));
+                const double ca = c0 + (c1 - c0) * j / rays_per_line_, cb = c0 + (c1 - c0) * (j + 1) / rays_per_line_;
+                const bool dense = across && footprint.axis_offset(cb) >= outline->y_lo && footprint.axis_offset(ca) <= outline->y_hi;
+                const int n = dense ? dense_split_ : 1;
+                for (int s = 0; s < n; ++s) {
+                    const double ya = footprint.axis_offset(ca + (cb - ca) * s / n), yb = footprint.axis_offset(ca + (cb - ca) * (s + 1) / n);
+                    const double ym = footprint.axis_offset(ca + (cb - ca) * (s + 0.5) / n);
+                    if (part.excluded && footprint.contains(*part.excluded, line.x_rad, ym)) continue;
+                    const bool first = j == 0 && s == 0, last = j + 1 == rays_per_line_ && s + 1 == n;
+                    cells.push_back({k, first ? -line.t_max : std::tan(ya * ell), last ? line.t_max : std::tan(yb * ell)});
+                    rays.push_back(context_.ray(beam.aim, line.x_rad, ym));
+                }
             }
             continue;
         }

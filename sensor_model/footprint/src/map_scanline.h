@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "beam_cone.h"
 #include "footprint_context.h"
 #include "ladarsim/sensor_model/footprint/footprint_strategy.h"
 #include "ladarsim/sensor_model/footprint/disc_chords.h"
@@ -23,7 +24,9 @@ public:
     /// cells of equal energy, find whatever other object covers their cell nearer than the map (or
     /// where the map leaves a gap); 0: one ray in the middle of each gap the map leaves on a line,
     /// for what lies beyond it (targets in front of the map are the caller's: FootprintPart::excluded).
-    MapScanline(const FootprintContext& context, const MapDiscs& discs, int lines, int rays_per_line);
+    /// With `cone` (and rays_per_line > 0), the cells over the outline of the targets the beam's
+    /// cone meets are split until they are as fine across the line as the lines are apart.
+    MapScanline(const FootprintContext& context, const MapDiscs& discs, int lines, int rays_per_line, const BeamCone* cone = nullptr);
 
     /// The echoes of the map (and of what its rays met) over `part` outside part.excluded, carrying
     /// part.share of the beam. Declined in media (the map's rays do not scatter).
@@ -49,7 +52,9 @@ private:
 
     const FootprintContext& context_;
     const MapDiscs& discs_;
+    const BeamCone* cone_;
     int rays_per_line_;
+    int dense_split_;  ///< cells a coarse cell over a target's outline is split into
     std::vector<Line> lines_;
     double tan_half_;  ///< the truncated footprint's cone, as tan of its half-angle
 };

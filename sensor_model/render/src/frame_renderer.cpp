@@ -81,7 +81,9 @@ FrameRenderer::FrameRenderer(const Scenario& scenario)
         truth_boxes_model_.push_back(scene::animates(*object.model, object.animation) ? scene::animated_bounds(*object.model, object.animation)
                                                                                       : Eigen::AlignedBox3d());
     if (integrator_.adaptive()) find_neighbours();
-    // The lattice shares sub-rays traced from one place along a line: not from a moving platform.
+    // Shared map lines and the target lattice both trace from one place for a whole row: not from
+    // a moving platform (each beam then integrates from its own origin).
+    if (!scenario.mount.moves()) integrator_.share_map_rows(raster_);
     if (integrator_.adaptive() && !scenario.mount.moves() && TargetLattice::worthwhile(integrator_.shape().footprint(), raster_)) {
         target_lattice_ = std::make_unique<TargetLattice>(traced_, raster_, integrator_.shape(), radiometry_, integrator_.grid_base(),
                                                           scenario.mount.position_world,
@@ -242,6 +244,7 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
         aims_[static_cast<std::size_t>(row * columns + beam.column)] =
             moving ? aim_moving(beam, step, pointing, frame_start_s) : aim(beam, step, gimbal, frame_start_s);
     }
+    integrator_.start_map_row(row, world_from_sensor_rotation_ * gimbal.toRotationMatrix());
     if (!integrator_.adaptive()) return 0;
 
     thread_local std::vector<raytrace::Ray> rays;

@@ -26,8 +26,12 @@ struct VisiblePiece {
 inline constexpr std::uint32_t kGapPiece = 0xFFFFFFFFu;
 
 /// The chord of a disc (centre p, unit normal n, radius r; beam coordinates) on the line of
-/// directions (1, X, t), clipped to |t| <= t_max; false where the line's plane misses it.
-bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, double X, double t_max, DiscChord& out);
+/// directions (1, X, t), clipped to t_min <= t <= t_max; false where the line's plane misses it.
+bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, double X, double t_min, double t_max, DiscChord& out);
+/// The same clipped to |t| <= t_max (a beam's own lines, centred on its axis).
+inline bool disc_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r, double X, double t_max, DiscChord& out) {
+    return disc_chord(p, n, r, X, -t_max, t_max, out);
+}
 /// The nearest of `chords` along [t0, t1], gaps included, in order, appended to `out`.
 void lower_envelope(std::vector<DiscChord>& chords, double t0, double t1, std::vector<VisiblePiece>& out);
 

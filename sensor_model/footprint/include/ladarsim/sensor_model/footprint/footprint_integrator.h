@@ -12,6 +12,7 @@
 #include "ladarsim/sensor_model/footprint/beam.h"
 #include "ladarsim/sensor_model/footprint/beam_shape.h"
 #include "ladarsim/sensor_model/footprint/footprint_settings.h"
+#include "ladarsim/sensor_model/sensor/scan_pattern.h"
 #include "ladarsim/sensor_model/sensor/sensor.h"
 #include "ladarsim/sensor_model/signal/echo_radiometry.h"
 
@@ -49,6 +50,13 @@ public:
     /// Where a lone target is sampled (without media), its line's shared sub-rays over it instead
     /// of its own where the lattice holds it (null: its own). Set before rendering.
     void share_target_sub_rays(const TargetLattice* lattice);
+
+    /// Over a recorded map, the visibility along lines each row of `raster` shares (MapRows), where
+    /// its rows allow it. Set before rendering; true where they do.
+    bool share_map_rows(const ScanPattern& raster);
+    /// The map's shared lines of `row` for a frame (after share_map_rows, before the row's beams):
+    /// `world_from_gimbal` the gimbal's frame then. Rows are independent of each other.
+    void start_map_row(int row, const Eigen::Matrix3d& world_from_gimbal);
 
     /// Echoes of one beam. `probes` (adaptive only) start with the beam's own axis.
     void integrate(const BeamAim& aim, std::span<const Probe> probes, std::uint64_t frame, BeamEchoes& out) const;
