@@ -212,17 +212,4 @@ Eigen::AlignedBox3d animated_bounds(const Model& model, const AnimationChoice& c
     return Eigen::AlignedBox3d(box.min() - pad, box.max() + pad);
 }
 
-double animation_step_s(const Model& model, const AnimationChoice& choice) {
-    double shortest = std::numeric_limits<double>::infinity();
-    if (!animates(model, choice)) return shortest;
-    const Animation& animation = *model.animation;
-    for (std::size_t c = 0; c < animation.clips.size(); ++c) {
-        if (!choice.plays(static_cast<std::uint32_t>(c))) continue;
-        for (const AnimationChannel& channel : animation.clips[c].channels)
-            for (std::size_t k = 1; k < channel.times_s.size(); ++k)
-                shortest = std::min(shortest, channel.times_s[k] - channel.times_s[k - 1]);
-    }
-    return shortest / 4.0;
-}
-
 }  // namespace ladarsim::scene

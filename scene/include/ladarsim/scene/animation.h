@@ -90,9 +90,5 @@ void part_motions(const Model& model, const AnimationChoice& choice, double time
 /// sampled densely over each clip's loop and padded for what lies between samples.
 Eigen::AlignedBox3d animated_bounds(const Model& model, const AnimationChoice& choice);
 
-/// The longest time between two placements of the parts for which interpolating between them
-/// (slerp for rotation, linear for the rest) stays close to the animation: a quarter of the
-/// shortest key interval of the chosen clips (infinity when nothing plays).
-double animation_step_s(const Model& model, const AnimationChoice& choice);
 
 }  // namespace ladarsim::scene
