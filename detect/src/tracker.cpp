@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "ladarsim/detect/box_metrics.h"
+#include "ladarsim/detect/line_profile.h"
 #include "ladarsim/core/units.h"
 
 namespace ladarsim::detect {
@@ -114,7 +115,7 @@ void TargetTracker::reset(std::uint64_t, double time_s, const OrientedBox& truth
 }
 
 Detection TargetTracker::process(std::uint64_t frame, double time_s, const Points& points,
-                                 const std::optional<Eigen::Vector3d>& boresight) {
+                                 const std::optional<Eigen::Vector3d>& boresight, const std::vector<float>& intensity) {
     Detection d;
     d.frame = frame;
     d.time_s = time_s;
@@ -180,6 +181,14 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         d.box = chosen->box;
         d.box.size = d.box.size.cwiseMax(Eigen::Vector3d::Constant(config_.min_box_m));
         d.sensor_box = sensor_aware_box(chosen->box, config_.footprint_divergences * divergence_rad, config_.target_size_m);
+        if (!intensity.empty() && config_.min_peak_ratio > 0.0) {
+            const IntensityOf intensity_of(points, intensity);
+            std::vector<float> echoes;
+            for (const auto& p : chosen->points) echoes.push_back(intensity_of(p));
+            const double line_pitch_rad = sensor_.field_el_deg * kDeg / sensor_.beams_el;
+            if (const auto elevation = target_elevation_rad(chosen->points, echoes, line_pitch_rad, 0.5 * divergence_rad, config_.min_peak_ratio))
+                d.sensor_box.centre = at_elevation(d.sensor_box.centre, *elevation);
+        }
         last_sensor_size_ = d.sensor_box.size;
         d.points = chosen->points.size();
         remember(time_s, d.box);
