@@ -30,8 +30,7 @@ float IntensityOf::operator()(const Eigen::Vector3f& p) const {
     return it == by_position_.end() ? 0.0f : it->second;
 }
 
-std::optional<double> target_elevation_rad(const Points& points, const std::vector<float>& intensity,
-                                           double line_pitch_rad, double beam_radius_rad, double min_peak_ratio) {
+std::optional<LinePair> strongest_line_pair(const Points& points, const std::vector<float>& intensity, double line_pitch_rad) {
     struct Echo {
         double elevation;
         double intensity;
@@ -42,7 +41,6 @@ std::optional<double> target_elevation_rad(const Points& points, const std::vect
         echoes.push_back({std::atan2(p.z(), p.head<2>().norm()), intensity[i]});
     }
     std::sort(echoes.begin(), echoes.end(), [](const Echo& a, const Echo& b) { return a.elevation < b.elevation; });
-    // Each line's strongest echo: the beam nearest the target in azimuth.
     std::vector<Echo> peaks;
     for (std::size_t i = 0; i < echoes.size(); ++i) {
         if (i == 0 || echoes[i].elevation - echoes[i - 1].elevation > 0.5 * line_pitch_rad) peaks.push_back(echoes[i]);
@@ -50,14 +48,16 @@ std::optional<double> target_elevation_rad(const Points& points, const std::vect
     }
     if (peaks.size() < 2) return std::nullopt;
     std::partial_sort(peaks.begin(), peaks.begin() + 2, peaks.end(), [](const Echo& a, const Echo& b) { return a.intensity > b.intensity; });
-    const Echo& strong = peaks[0];
-    const Echo& weak = peaks[1];
-    const double apart = strong.elevation - weak.elevation;
-    if (std::abs(apart) > 1.5 * line_pitch_rad || !(weak.intensity > 0.0) || strong.intensity < min_peak_ratio * weak.intensity)
+    const auto [lower, upper] = std::minmax(peaks[0], peaks[1], [](const Echo& a, const Echo& b) { return a.elevation < b.elevation; });
+    if (upper.elevation - lower.elevation > 1.5 * line_pitch_rad || !(lower.intensity > 0.0) || !(upper.intensity > 0.0))
         return std::nullopt;
-    const double e = 0.5 * (strong.elevation + weak.elevation) +
-                     beam_radius_rad * beam_radius_rad * std::log(strong.intensity / weak.intensity) / (4.0 * apart);
-    return std::clamp(e, std::min(strong.elevation, weak.elevation), std::max(strong.elevation, weak.elevation));
+    return LinePair{lower.elevation, upper.elevation, std::log(upper.intensity / lower.intensity)};
+}
+
+double elevation_between(const LinePair& pair, double log_ratio, double beam_radius_rad) {
+    const double e = 0.5 * (pair.lower_rad + pair.upper_rad) +
+                     beam_radius_rad * beam_radius_rad * log_ratio / (4.0 * (pair.upper_rad - pair.lower_rad));
+    return std::clamp(e, pair.lower_rad, pair.upper_rad);
 }
 
 Eigen::Vector3d at_elevation(const Eigen::Vector3d& centre, double elevation_rad) {

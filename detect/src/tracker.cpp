@@ -8,7 +8,6 @@
 #include <Eigen/Dense>
 
 #include "ladarsim/detect/box_metrics.h"
-#include "ladarsim/detect/line_profile.h"
 #include "ladarsim/core/units.h"
 
 namespace ladarsim::detect {
@@ -109,6 +108,7 @@ void TargetTracker::remember(double time_s, const OrientedBox& box) {
 
 void TargetTracker::reset(std::uint64_t, double time_s, const OrientedBox& truth) {
     history_.clear();
+    line_pairs_.clear();
     remember(time_s, truth);
     last_sensor_size_ = truth.size;
     kalman_->start(time_s, truth.centre);
@@ -186,8 +186,18 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
             std::vector<float> echoes;
             for (const auto& p : chosen->points) echoes.push_back(intensity_of(p));
             const double line_pitch_rad = sensor_.field_el_deg * kDeg / sensor_.beams_el;
-            if (const auto elevation = target_elevation_rad(chosen->points, echoes, line_pitch_rad, 0.5 * divergence_rad, config_.min_peak_ratio))
-                d.sensor_box.centre = at_elevation(d.sensor_box.centre, *elevation);
+            if (const auto pair = strongest_line_pair(chosen->points, echoes, line_pitch_rad)) {
+                // The target crossed to another pair of lines: its offset from their midpoint jumped.
+                if (!line_pairs_.empty() && std::abs(line_pairs_.back().lower_rad - pair->lower_rad) > 0.5 * line_pitch_rad)
+                    line_pairs_.clear();
+                line_pairs_.push_back(*pair);
+                while (static_cast<int>(line_pairs_.size()) > config_.line_profile_frames) line_pairs_.pop_front();
+                double log_ratio = 0.0;
+                for (const LinePair& l : line_pairs_) log_ratio += l.log_ratio;
+                log_ratio /= static_cast<double>(line_pairs_.size());
+                if (std::abs(log_ratio) >= std::log(config_.min_peak_ratio))
+                    d.sensor_box.centre = at_elevation(d.sensor_box.centre, elevation_between(*pair, log_ratio, 0.5 * divergence_rad));
+            }
         }
         last_sensor_size_ = d.sensor_box.size;
         d.points = chosen->points.size();

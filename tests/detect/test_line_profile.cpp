@@ -48,19 +48,15 @@ double elevation_of(const Eigen::Vector3d& p) { return std::atan2(p.z(), p.head<
 TEST_CASE("line profile: two lines' peak echoes give a target's elevation between them", "[detect][line_profile]") {
     const double el_t = 0.3 * kPitchEl;
     const Returns r = point_target(600.0, 0.2 * kPitchAz, el_t);
-    const auto e = target_elevation_rad(r.points, r.intensity, kPitchEl, kRadius, 4.0);
-    REQUIRE(e);
-    CHECK(*e == Approx(el_t).margin(1e-8));
-}
-
-TEST_CASE("line profile: peaks closer than the trusted ratio, or one line, leave the midpoint", "[detect][line_profile]") {
-    // 0.45 pitch above the lower line the peaks differ by exp(0.2 pitch^2 / radius^2) = 1.49.
-    const Returns r = point_target(600.0, 0.0, 0.45 * kPitchEl);
-    CHECK_FALSE(target_elevation_rad(r.points, r.intensity, kPitchEl, kRadius, 4.0));
-    CHECK(target_elevation_rad(r.points, r.intensity, kPitchEl, kRadius, 1.0));
+    const auto pair = strongest_line_pair(r.points, r.intensity, kPitchEl);
+    REQUIRE(pair);
+    CHECK(pair->lower_rad == Approx(0.0).margin(1e-9));
+    CHECK(pair->upper_rad == Approx(kPitchEl).epsilon(1e-6));
+    CHECK(elevation_between(*pair, pair->log_ratio, kRadius) == Approx(el_t).margin(1e-8));
+    // Returns on one line say nothing of where between lines the target is.
     const Points one_line(r.points.begin(), r.points.begin() + 16);
     const std::vector<float> its(r.intensity.begin(), r.intensity.begin() + 16);
-    CHECK_FALSE(target_elevation_rad(one_line, its, kPitchEl, kRadius, 1.0));
+    CHECK_FALSE(strongest_line_pair(one_line, its, kPitchEl));
 }
 
 TEST_CASE("line profile: the cued tracker's sensor-aware box sits at the target's height, not between the lines", "[detect][line_profile]") {
@@ -78,4 +74,29 @@ TEST_CASE("line profile: the cued tracker's sensor-aware box sits at the target'
     const Detection m = without.process(0, 0.0, r.points, cue);
     REQUIRE(m.found);
     CHECK(std::abs(elevation_of(m.sensor_box.centre) - el_t) * range > 0.04);
+}
+
+TEST_CASE("line profile: the cued tracker keeps a midway drone between the lines while one line's echo fluctuates", "[detect][line_profile]") {
+    const double range = 600.0, el_t = 0.5 * kPitchEl;
+    DetectorConfig config;
+    config.lambda = 180.0;
+    DetectorConfig single = config;
+    single.line_profile_frames = 1;
+    TargetTracker averaged(config, kPaperSensor, {});
+    TargetTracker unaveraged(single, kPaperSensor, {});
+    const Eigen::Vector3d cue = along(1.0, 0.0, el_t).cast<double>().normalized();
+    for (int k = 0; k < 8; ++k) {
+        // The upper line's echo 3.5 times stronger, then weaker, frame after frame: more than the
+        // trusted ratio in one frame, nothing on average.
+        Returns r = point_target(range, 0.0, el_t);
+        const float f = k == 0 ? 1.0f : k % 2 ? 3.5f : 1.0f / 3.5f;
+        for (std::size_t i = 16; i < r.intensity.size(); ++i) r.intensity[i] *= f;
+        const Detection d = averaged.process(k, 0.05 * k, r.points, cue, r.intensity);
+        const Detection u = unaveraged.process(k, 0.05 * k, r.points, cue, r.intensity);
+        INFO("frame " << k);
+        REQUIRE(d.found);
+        REQUIRE(u.found);
+        CHECK(std::abs(elevation_of(d.sensor_box.centre) - el_t) * range < 1e-3);
+        if (k > 0) CHECK(std::abs(elevation_of(u.sensor_box.centre) - el_t) * range > 0.03);
+    }
 }

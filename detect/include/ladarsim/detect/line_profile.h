@@ -28,17 +28,23 @@ private:
     std::unordered_map<Eigen::Vector3f, float, Hash> by_position_;
 };
 
-/// The elevation (sensor frame, radians) of a small target seen by more than one scan line, from
-/// the strongest echo of its two strongest lines: a Gaussian beam of 1/e^2 intensity radius
-/// `beam_radius_rad` across lines e1 and e2 with peaks s1 and s2 puts it at
-/// (e1 + e2) / 2 + beam_radius^2 ln(s1 / s2) / (4 (e1 - e2)), clamped between them. Lines are told
-/// apart as in without_sparse_lines (a gap in elevation over half `line_pitch_rad`). Empty, so the
-/// caller keeps the midpoint of its returns, when they lie on one line, when the two strongest lines
-/// are not neighbours, or when their peaks differ by less than `min_peak_ratio`: a small target's
-/// echo fluctuates from line to line (its facets' speckle, a line scanned 1 ms after the other),
-/// by up to 2.2 times where dataset 4's drone lies midway between lines at 1.9 km.
-std::optional<double> target_elevation_rad(const Points& points, const std::vector<float>& intensity,
-                                           double line_pitch_rad, double beam_radius_rad, double min_peak_ratio);
+/// The two neighbouring scan lines with the strongest echoes of a small target: their elevations
+/// (sensor frame, radians) and the log of the upper line's peak echo over the lower's. Each line's
+/// peak is its beam nearest the target in azimuth, the beam's profile sampled at the target's
+/// offset from the line. Lines are told apart as in without_sparse_lines (a gap in elevation over
+/// half `line_pitch_rad`). Empty when the returns lie on one line or the two strongest lines are
+/// not neighbours.
+struct LinePair {
+    double lower_rad = 0.0;
+    double upper_rad = 0.0;
+    double log_ratio = 0.0;  ///< ln(upper peak / lower peak)
+};
+std::optional<LinePair> strongest_line_pair(const Points& points, const std::vector<float>& intensity, double line_pitch_rad);
+
+/// Where between the pair's lines a point target lies for a log peak ratio `log_ratio` under a
+/// Gaussian beam of 1/e^2 intensity radius `beam_radius_rad`:
+/// (lower + upper) / 2 + beam_radius^2 log_ratio / (4 (upper - lower)), clamped between them.
+double elevation_between(const LinePair& pair, double log_ratio, double beam_radius_rad);
 
 /// `centre` moved to elevation `elevation_rad` about the sensor origin, its range and azimuth kept.
 Eigen::Vector3d at_elevation(const Eigen::Vector3d& centre, double elevation_rad);
