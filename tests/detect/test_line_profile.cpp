@@ -7,21 +7,15 @@
 #include "ladarsim/core/units.h"
 #include "ladarsim/detect/line_profile.h"
 #include "ladarsim/detect/tracker.h"
+#include "paper_raster.h"
 
 using namespace ladarsim::detect;
-using ladarsim::SensorGeometry;
+using namespace paper_raster;
 
 namespace {
 
-/// The paper's raster: 150 x 20 beams over 0.5 x 0.5 deg, 0.62 mrad beams (1/e^2 radius 0.31 mrad).
-const SensorGeometry kPaperSensor{
-    .beams_az = 150, .beams_el = 20, .field_az_deg = 0.5, .field_el_deg = 0.5, .divergence_mrad = 0.62};
-constexpr double kPitchAz = 0.5 * ladarsim::kDeg / 150.0, kPitchEl = 0.5 * ladarsim::kDeg / 20.0;
+/// The paper's beam: 1/e^2 intensity radius, half its 0.62 mrad divergence.
 constexpr double kRadius = 0.31e-3;
-
-Eigen::Vector3f along(double range, double az, double el) {
-    return (range * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))).cast<float>();
-}
 
 /// The returns of a point target at (az_t, el_t): the 16 beams nearest it in azimuth on the lines
 /// at elevations 0 and one pitch, each with the beam's irradiance at the target.
