@@ -11,6 +11,13 @@ Points positions_of(const std::vector<Return>& returns) {
     return p;
 }
 
+std::vector<float> intensities_of(const std::vector<Return>& returns) {
+    std::vector<float> v;
+    v.reserve(returns.size());
+    for (const auto& r : returns) v.push_back(r.intensity);
+    return v;
+}
+
 OrientedBox bounding_box(const Points& points) {
     Eigen::AlignedBox3f box;
     for (const auto& p : points) box.extend(p);

@@ -16,6 +16,16 @@
 
 namespace ladarsim::detect {
 
+namespace {
+
+/// Frame i's intensities, empty for a sequence built without them.
+const std::vector<float>& frame_intensity(const Sequence& s, std::size_t i) {
+    static const std::vector<float> none;
+    return i < s.intensity.size() ? s.intensity[i] : none;
+}
+
+}  // namespace
+
 Sequence load_sequence(const std::filesystem::path& dir) {
     Sequence s;
     s.directory = dir;
@@ -25,7 +35,9 @@ Sequence load_sequence(const std::filesystem::path& dir) {
     s.dataset_id = manifest.id;
     if (std::filesystem::exists(dir / "ground_truth.json")) s.truth = read_ground_truth_json(dir / "ground_truth.json");
     for (std::size_t i = 0; i < files.size(); ++i) {
-        s.frames.push_back(positions_of(read_frame_pcd(files[i])));
+        const std::vector<Return> returns = read_frame_pcd(files[i]);
+        s.frames.push_back(positions_of(returns));
+        s.intensity.push_back(intensities_of(returns));
         s.frame_index.push_back(i < s.truth.size() ? s.truth[i].index : i);
         // Without ground truth, frames are taken 1/20 s apart (the paper's frame rate).
         s.time_s.push_back(i < s.truth.size() ? 0.5 * (s.truth[i].start_time_s + s.truth[i].end_time_s) : i / 20.0);
@@ -94,7 +106,7 @@ std::vector<Detection> detect_sequence(const Sequence& s, const DetectorConfig& 
     TargetTracker tracker(config, s.sensor, s.background);
     std::vector<Detection> out;
     for (std::size_t i = 0; i < s.frames.size(); ++i)
-        out.push_back(tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]));
+        out.push_back(tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i], frame_intensity(s, i)));
     return out;
 }
 
@@ -169,7 +181,7 @@ SupervisedRun supervised_run(const Sequence& s, const DetectorConfig& config, st
             run.initialised.push_back(false);
             continue;
         }
-        const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i]);
+        const Detection d = tracker.process(s.frame_index[i], s.time_s[i], s.frames[i], s.boresight[i], frame_intensity(s, i));
         confirmed = confirmed || (d.found && !d.predicted);
         const double iou = confirmed ? overlap(d, box, kind, *truth) : 0.0;
         run.iou.push_back(iou);

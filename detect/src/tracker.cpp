@@ -108,13 +108,14 @@ void TargetTracker::remember(double time_s, const OrientedBox& box) {
 
 void TargetTracker::reset(std::uint64_t, double time_s, const OrientedBox& truth) {
     history_.clear();
+    line_pairs_.clear();
     remember(time_s, truth);
     last_sensor_size_ = truth.size;
     kalman_->start(time_s, truth.centre);
 }
 
 Detection TargetTracker::process(std::uint64_t frame, double time_s, const Points& points,
-                                 const std::optional<Eigen::Vector3d>& boresight) {
+                                 const std::optional<Eigen::Vector3d>& boresight, const std::vector<float>& intensity) {
     Detection d;
     d.frame = frame;
     d.time_s = time_s;
@@ -180,6 +181,24 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         d.box = chosen->box;
         d.box.size = d.box.size.cwiseMax(Eigen::Vector3d::Constant(config_.min_box_m));
         d.sensor_box = sensor_aware_box(chosen->box, config_.footprint_divergences * divergence_rad, config_.target_size_m);
+        if (!intensity.empty() && config_.min_peak_ratio > 0.0) {
+            const IntensityOf intensity_of(points, intensity);
+            std::vector<float> echoes;
+            for (const auto& p : chosen->points) echoes.push_back(intensity_of(p));
+            const double line_pitch_rad = sensor_.field_el_deg * kDeg / sensor_.beams_el;
+            if (const auto pair = strongest_line_pair(chosen->points, echoes, line_pitch_rad)) {
+                // The target crossed to another pair of lines: its offset from their midpoint jumped.
+                if (!line_pairs_.empty() && std::abs(line_pairs_.back().lower_rad - pair->lower_rad) > 0.5 * line_pitch_rad)
+                    line_pairs_.clear();
+                line_pairs_.push_back(*pair);
+                while (static_cast<int>(line_pairs_.size()) > config_.line_profile_frames) line_pairs_.pop_front();
+                double log_ratio = 0.0;
+                for (const LinePair& l : line_pairs_) log_ratio += l.log_ratio;
+                log_ratio /= static_cast<double>(line_pairs_.size());
+                if (std::abs(log_ratio) >= std::log(config_.min_peak_ratio))
+                    d.sensor_box.centre = at_elevation(d.sensor_box.centre, elevation_between(*pair, log_ratio, 0.5 * divergence_rad));
+            }
+        }
         last_sensor_size_ = d.sensor_box.size;
         d.points = chosen->points.size();
         remember(time_s, d.box);

@@ -9,21 +9,12 @@
 #include "ladarsim/detect/clustering.h"
 #include "ladarsim/detect/multi_target.h"
 #include "ladarsim/detect/tracker.h"
+#include "paper_raster.h"
 
 using namespace ladarsim::detect;
-using ladarsim::SensorGeometry;
+using namespace paper_raster;
 
 namespace {
-
-/// The paper's raster: 150 x 20 beams over 0.5 x 0.5 deg, 0.62 mrad beams.
-const SensorGeometry kPaperSensor{
-    .beams_az = 150, .beams_el = 20, .field_az_deg = 0.5, .field_el_deg = 0.5, .divergence_mrad = 0.62};
-/// Its beam pitches, radians.
-constexpr double kPitchAz = 0.5 * ladarsim::kDeg / 150.0, kPitchEl = 0.5 * ladarsim::kDeg / 20.0;
-
-Eigen::Vector3f along(double range, double az, double el) {
-    return (range * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))).cast<float>();
-}
 
 /// A drone's returns: `beams` neighbouring beams on each of 2 lines, every one at `range`, the
 /// first beam at (az, el). Rendered, a line has about 16 (a footprint's width over the azimuth pitch).

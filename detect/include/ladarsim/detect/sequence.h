@@ -26,6 +26,7 @@ struct Sequence {
     std::vector<std::uint64_t> frame_index;
     std::vector<double> time_s;
     std::vector<Points> frames;
+    std::vector<std::vector<float>> intensity;  ///< per frame, one per point of frames
     Points background;  ///< background.pcd; empty when the dataset has none
     /// Per frame, the unit direction of the gimbal's pointing from manifest.json (the radar cue),
     /// when the dataset has one.
