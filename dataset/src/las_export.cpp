@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <regex>
 
 #include <Eigen/Geometry>
@@ -19,7 +20,6 @@ namespace ladarsim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::uint8_t kNeverClassified = 0, kUnclassified = 1, kNoise = 7;
 constexpr double kScale_m = 1e-4;  // 0.1 mm: below float32's rounding of a PCD's coordinates beyond 1.6 km
 constexpr double kScanAngleUnit_deg = 0.006;
@@ -104,7 +104,7 @@ LasCloud las_cloud(const std::vector<Return>& returns, const std::optional<std::
         }
         p.classification = las_class_code(r.source, object_class);
         p.user_data = static_cast<std::uint8_t>(r.source);
-        p.scan_angle = static_cast<std::int16_t>(std::lround(std::clamp(r.beam_az_rad * 180.0 / kPi / kScanAngleUnit_deg, -30000.0, 30000.0)));
+        p.scan_angle = static_cast<std::int16_t>(std::lround(std::clamp(r.beam_az_rad * 180.0 / std::numbers::pi / kScanAngleUnit_deg, -30000.0, 30000.0)));
         p.gps_time = r.time_s;
         p.extra = {static_cast<double>(r.object_id), static_cast<double>(r.intensity)};
         cloud.points.push_back(std::move(p));

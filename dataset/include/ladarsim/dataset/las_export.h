@@ -37,7 +37,8 @@ const std::vector<std::pair<std::string, int>>& las_class_map();
 const OutputLayout& las_layout();
 
 struct LasExportOptions {
-    /// Points in world coordinates (the mount's pose from manifest.json), not the sensor frame.
+    /// Points in world coordinates, not the sensor frame: a fixed mount's pose from manifest.json, a
+    /// moving platform's at each return's own time from sensor_trajectory.txt.
     bool world = false;
 };
 
