@@ -194,13 +194,14 @@ GimbalPointing FrameRenderer::gimbal_pointing(std::uint64_t index) {
     return pointing_by_frame_[index];
 }
 
-BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, double frame_start_s) const {
+BeamAim FrameRenderer::aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, const Eigen::Matrix3d& world_from_sensor,
+                           const Eigen::Vector3d& origin_world, double time_s) const {
     BeamAim a;
     // sensor_from_beam(pointing, az offset, el offset), composed in the same order.
     const auto& offset = offset_rotations_[static_cast<std::size_t>(beam.row * raster_.columns() + step)];
-    a.world_from_beam = world_from_sensor_rotation_ * ((gimbal * offset[0]) * offset[1]).toRotationMatrix();
-    a.origin_world = scenario_.mount.position_world;
-    a.time_s = frame_start_s + beam.time_offset_s;
+    a.world_from_beam = world_from_sensor * ((gimbal * offset[0]) * offset[1]).toRotationMatrix();
+    a.origin_world = origin_world;
+    a.time_s = time_s;
     a.cell = static_cast<std::uint32_t>(beam.row * raster_.columns() + step);  // keys the beam's random draws
     return a;
 }
@@ -215,23 +216,18 @@ Eigen::Vector3d FrameRenderer::stare_point(std::uint64_t index, GimbalPointing p
 }
 
 BeamAim FrameRenderer::aim_moving(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const {
-    BeamAim a;
-    a.time_s = frame_start_s + beam.time_offset_s;
-    const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor(a.time_s);
+    const double time_s = frame_start_s + beam.time_offset_s;
+    const Eigen::Isometry3d world_from_sensor = scenario_.mount.world_from_sensor(time_s);
     if (stare_point_) {
         // Stabilised: the gimbal turns against the platform's motion to hold its stare point,
         // within its limits and slew rate (from where the frame started it).
         Gimbal g(scenario_.sensor.gimbal, pointing);
-        g.slew_towards(pointing_towards(world_from_sensor.inverse() * *stare_point_), a.time_s - frame_start_s);
+        g.slew_towards(pointing_towards(world_from_sensor.inverse() * *stare_point_), time_s - frame_start_s);
         pointing = g.pointing();
     }
     const Eigen::Quaterniond gimbal = Eigen::AngleAxisd(pointing.az_rad, Eigen::Vector3d::UnitZ()) *
                                       Eigen::AngleAxisd(-pointing.el_rad, Eigen::Vector3d::UnitY());
-    const auto& offset = offset_rotations_[static_cast<std::size_t>(beam.row * raster_.columns() + step)];
-    a.world_from_beam = world_from_sensor.linear() * ((gimbal * offset[0]) * offset[1]).toRotationMatrix();
-    a.origin_world = world_from_sensor.translation();
-    a.cell = static_cast<std::uint32_t>(beam.row * raster_.columns() + step);
-    return a;
+    return aim(beam, step, gimbal, world_from_sensor.linear(), world_from_sensor.translation(), time_s);
 }
 
 std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double frame_start_s) {
@@ -242,7 +238,8 @@ std::uint64_t FrameRenderer::aim_row(int row, GimbalPointing pointing, double fr
     for (int step = 0; step < columns; ++step) {
         const RasterBeam beam = raster_.beam(row, step);
         aims_[static_cast<std::size_t>(row * columns + beam.column)] =
-            moving ? aim_moving(beam, step, pointing, frame_start_s) : aim(beam, step, gimbal, frame_start_s);
+            moving ? aim_moving(beam, step, pointing, frame_start_s)
+                   : aim(beam, step, gimbal, world_from_sensor_rotation_, scenario_.mount.position_world, frame_start_s + beam.time_offset_s);
     }
     integrator_.start_map_row(row, world_from_sensor_rotation_ * gimbal.toRotationMatrix());
     if (!integrator_.adaptive()) return 0;

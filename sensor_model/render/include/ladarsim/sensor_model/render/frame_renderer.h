@@ -59,8 +59,10 @@ private:
         double irradiance;
         bool inside;  ///< within the footprint's truncation: a probe, not a sentinel
     };
-    /// `gimbal`: the pointing's rotation, AngleAxis(az, z) * AngleAxis(-el, y).
-    BeamAim aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, double frame_start_s) const;
+    /// `gimbal`: the pointing's rotation, AngleAxis(az, z) * AngleAxis(-el, y); `world_from_sensor`
+    /// and `origin_world`: the sensor's rotation and place at the beam's time `time_s`.
+    BeamAim aim(const RasterBeam& beam, int step, const Eigen::Quaterniond& gimbal, const Eigen::Matrix3d& world_from_sensor,
+                const Eigen::Vector3d& origin_world, double time_s) const;
     /// The same on a moving platform: the sensor's pose at the beam's time, and a cued gimbal
     /// stabilised on the frame's stare point (stare_point_).
     BeamAim aim_moving(const RasterBeam& beam, int step, GimbalPointing pointing, double frame_start_s) const;
