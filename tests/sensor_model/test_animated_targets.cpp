@@ -27,24 +27,11 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-// A square plate facing +-x at rest, turned about the vertical through its centre by a glTF
-// rotation channel: keys a second apart, 90 deg apart, from `start_deg`; LINEAR (slerp).
+// The turning plate with keys a second apart, 90 deg apart, from `start_deg`, through a glTF file.
 std::shared_ptr<const scene::Model> turning_plate_file(const std::filesystem::path& file, double side_m, double start_deg) {
-    scene::Model m = scene::make_plate(side_m, 0.5);
-    auto animation = std::make_shared<scene::Animation>();
-    animation->nodes.push_back(scene::AnimationNode{});
-    animation->parts.push_back({0, 0, static_cast<std::uint32_t>(m.mesh.triangles.size())});
-    scene::AnimationChannel turn;
-    turn.path = scene::AnimationPath::rotation;
-    turn.interpolation = scene::AnimationInterpolation::linear;
-    for (int k = 0; k <= 4; ++k) {
-        const Eigen::Quaterniond q(Eigen::AngleAxisd((start_deg + 90.0 * k) * kDeg, Eigen::Vector3d::UnitZ()));
-        turn.times_s.push_back(k);
-        turn.values.insert(turn.values.end(), {q.x(), q.y(), q.z(), q.w()});
-    }
-    animation->clips.push_back(scene::AnimationClip{"turn", {turn}, 4.0});
-    m.animation = animation;
-    scene::write_gltf(m, file);
+    std::vector<std::pair<double, double>> keys;
+    for (int k = 0; k <= 4; ++k) keys.emplace_back(k, start_deg + 90.0 * k);
+    scene::write_gltf(turning_plate(side_m, keys), file);
     return std::make_shared<scene::Model>(scene::load_gltf(file));
 }
 

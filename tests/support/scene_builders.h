@@ -4,11 +4,33 @@
 #include <map>
 #include <memory>
 #include <utility>
+#include <vector>
 
+#include "ladarsim/scene/animation.h"
 #include "ladarsim/scene/procedural_models.h"
 #include "ladarsim/scene/scene.h"
 
 namespace ladarsim::test {
+
+/// A square plate facing +-x at rest, turned about the vertical through its centre by a glTF
+/// rotation channel (LINEAR: slerp) with these keys: (time in s, yaw in deg).
+inline scene::Model turning_plate(double side_m, const std::vector<std::pair<double, double>>& keys) {
+    scene::Model m = scene::make_plate(side_m, 0.5);
+    auto animation = std::make_shared<scene::Animation>();
+    animation->nodes.push_back(scene::AnimationNode{});
+    animation->parts.push_back({0, 0, static_cast<std::uint32_t>(m.mesh.triangles.size())});
+    scene::AnimationChannel turn;
+    turn.path = scene::AnimationPath::rotation;
+    turn.interpolation = scene::AnimationInterpolation::linear;
+    for (const auto& [time_s, yaw_deg] : keys) {
+        const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+        turn.times_s.push_back(time_s);
+        turn.values.insert(turn.values.end(), {q.x(), q.y(), q.z(), q.w()});
+    }
+    animation->clips.push_back(scene::AnimationClip{"turn", {turn}, keys.back().first});
+    m.animation = animation;
+    return m;
+}
 
 /// A square plate in the model's y-z plane (facing -x and +x), side `side_m`, centred on the origin.
 inline std::shared_ptr<const scene::Model> plate(double side_m, double reflectance) {
