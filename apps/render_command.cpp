@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
 
 #include "command.h"
 #include "dry_run.h"
@@ -113,6 +115,13 @@ struct RenderCommand {
             if (!team)
                 stop_within_a_second("\ninterrupted; the finished frames are in " + out_dirs[i].string() +
                                      ".partial; continue with --resume\n");
+            // The ranks on one machine share its cores; loading (a recorded map's normals) keeps
+            // to the threads asked for, as rendering does.
+            const int workers = threads > 0 || !team
+                                    ? threads
+                                    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / team->local_size());
+            std::optional<tbb::global_control> parallelism;
+            if (workers > 0) parallelism.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(workers));
             const sensor_model::Scenario scenario = sensor_model::load_scenario(file);
             const bool frames_given = render->count("--frames") > 0;
             check_frames_fit_on_disk(frames_given ? frames : scenario.render.frames, frames_given ? std::to_string(frames) : file,
@@ -128,10 +137,7 @@ struct RenderCommand {
             options.out_dir = out_dirs[i];
             if (frames_given) options.frames = frames;
             if (render->count("--seed")) options.seed = seed;
-            // The ranks on one machine share its cores.
-            options.threads = threads > 0 || !team
-                                  ? threads
-                                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / team->local_size());
+            options.threads = workers;
             options.resume = resume;
             options.stop = &g_stop;
             options.team = team.get();

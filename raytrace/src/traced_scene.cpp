@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/QR>
 #include <embree3/rtcore.h>
 
+#include "animated_part.h"
 #include "embree_common.h"
 #include "ladarsim/scene/animation.h"
 #include "volume_boundaries.h"
@@ -30,11 +30,10 @@ struct TopGeometry {
     Geometry geometry;
     const scene::SceneObject* object = nullptr;  // null for the background discs
     const float* vertices = nullptr;              // static meshes: Embree's own vertex buffer (x y z per vertex)
-    // An animated object's instance of one animation part (its index into the model's parts), or
-    // of the triangles in none (-1); a moving instance of a whole model has -1 too.
-    int part = -1;
     // The model's triangle index of each primitive of the instanced BVH; null: the same index.
     const std::vector<std::uint32_t>* triangles = nullptr;
+    // An animated object's part, placed by us rather than by Embree's transform; null otherwise.
+    const AnimatedPart* animated = nullptr;
 };
 
 // One BVH per distinct model, instanced by every moving object that uses it; an animated model
@@ -44,13 +43,6 @@ struct ModelBvh {
     const scene::Model* model;
     std::vector<std::uint32_t> triangles;  // empty: the whole mesh
 };
-
-using Matrix34 = Eigen::Matrix<double, 3, 4>;
-
-constexpr int kMostTimeSteps = 129;  // Embree's limit on a geometry's time steps
-/// How far an animated part's interpolated placement may stray from its animation: far below a
-/// footprint's sub-ray spacing and the receiver's range resolution.
-constexpr double kAnimationStepError_m = 5e-5;
 
 Matrix34 to_matrix(const float* column_major) {
     Matrix34 m;
@@ -76,6 +68,15 @@ struct TracedScene::Impl {
     EmbreeScene top;
     std::optional<VolumeBoundaries> volumes;  // fog and cloud, traced only by volumes_along
     std::deque<ModelBvh> models;  // a deque: instances point at their BVH's triangle list
+    // Each animated object with its parts (Embree and the top geometries point at them) and their
+    // geometry ids in the top scene.
+    struct Animated {
+        std::unique_ptr<AnimatedObject> object;
+        std::deque<AnimatedPart> parts;
+        std::vector<AnimatedPart*> part_list;
+        std::vector<unsigned> top_ids;
+    };
+    std::deque<Animated> animated;
     std::vector<TopGeometry> geometries;  // by Embree geometry id in the top scene (null entry: `fixed`)
     std::map<const scene::Model*, std::size_t> model_index;
     const scene::BackgroundMap* background = nullptr;
@@ -212,10 +213,7 @@ struct TracedScene::Impl {
 
     // world - origin, as the affine map applied to model coordinates.
     Matrix34 relative_from_model(const scene::SceneObject& object, double time_s) const {
-        Eigen::Isometry3d pose = object.trajectory.at(time_s).world_from_object();
-        pose.translation() -= origin_world;
-        Eigen::Affine3d m = pose * Eigen::Scaling(object.scale);
-        return m.matrix().topRows<3>();
+        return raytrace::relative_from_model(object, origin_world, time_s);
     }
 
     Matrix34 world_from_model(const scene::SceneObject& object, double time_s) const {
@@ -263,7 +261,7 @@ struct TracedScene::Impl {
         return child;
     }
 
-    // One instance per animation part (and one for the triangles in none), each placed by the
+    // One user geometry per animation part (and one for the triangles in none), each placed by the
     // object's pose and its part's motion at the ray's time.
     void add_animated_instances(const scene::SceneObject& object) {
         const scene::Model& model = *object.model;
@@ -286,13 +284,16 @@ struct TracedScene::Impl {
                 models.push_back(ModelBvh{std::move(child), &model, std::move(list)});
             }
         }
+        Animated& a = animated.emplace_back();
+        a.object = std::make_unique<AnimatedObject>(object, origin_world);
         for (std::size_t k = 0; k <= parts.size(); ++k) {
             const ModelBvh& bvh = models[it->second + k];
             if (bvh.triangles.empty()) continue;
-            Geometry instance(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE));
-            rtcSetGeometryInstancedScene(instance.get(), bvh.scene.get());
-            attach(TopGeometry{GeometryKind::moving_instance, std::move(instance), &object, nullptr, static_cast<int>(k) - 1,
-                               &bvh.triangles});
+            AnimatedPart& part = a.parts.emplace_back(*a.object, static_cast<int>(k) - 1, bvh.scene.get(), model.mesh, bvh.triangles);
+            a.part_list.push_back(&part);
+            a.top_ids.push_back(static_cast<unsigned>(geometries.size()));
+            attach(TopGeometry{GeometryKind::moving_instance, part.make_geometry(device.get()), &object, nullptr, &bvh.triangles,
+                               &part});
         }
     }
 
@@ -342,10 +343,7 @@ struct TracedScene::Impl {
         }
         for (auto& entry : geometries) {
             if (entry.kind != GeometryKind::moving_instance) continue;
-            if (entry.triangles) {
-                place_animated(entry, begin_s, motion_steps);
-                continue;
-            }
+            if (entry.animated) continue;
             RTCGeometry g = entry.geometry.get();
             rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(motion_steps));
             for (int step = 0; step < motion_steps; ++step) {
@@ -358,122 +356,12 @@ struct TracedScene::Impl {
             }
             rtcCommitGeometry(g);
         }
+        for (Animated& a : animated) {
+            a.object->set_window(begin_s, window_length_s, a.part_list);
+            for (const unsigned id : a.top_ids) rtcCommitGeometry(geometries[id].geometry.get());
+        }
         rtcCommitScene(top.get());
         check("committing the scene");
-    }
-
-    // An animated object's part as Embree places it between time steps: T * R * S, S upper
-    // triangular with a shift (scale, skew, the pivot), R a rotation, T a translation; Embree
-    // slerps R and interpolates the rest linearly.
-    struct PartPlacement {
-        Eigen::Matrix3d u;
-        Eigen::Vector3d shift, translation;
-        Eigen::Quaterniond rotation;
-        Eigen::Vector3d apply(const Eigen::Vector3d& p) const { return translation + rotation * (u * p + shift); }
-    };
-
-    // The part's placement at time t: the object's trajectory, then the part's animation.
-    Matrix34 part_transform(const TopGeometry& entry, double t) const {
-        thread_local std::vector<Eigen::Affine3d> motions;
-        Matrix34 m = relative_from_model(*entry.object, t);
-        if (entry.part >= 0) {
-            scene::part_motions(*entry.object->model, entry.object->animation, t, motions);
-            m = m * motions[static_cast<std::size_t>(entry.part)].matrix();
-        }
-        return m;
-    }
-
-    // The placements of `steps` evenly spaced times over the window, consecutive rotations on one
-    // hemisphere (Embree slerps between them).
-    std::vector<PartPlacement> placements(const TopGeometry& entry, double begin_s, int steps, const Eigen::Vector3d& pivot) const {
-        std::vector<PartPlacement> out;
-        for (int step = 0; step < steps; ++step) {
-            out.push_back(decompose(part_transform(entry, begin_s + window_length_s * step / (steps - 1)), pivot));
-            if (step > 0 && out.back().rotation.dot(out[out.size() - 2].rotation) < 0.0) out.back().rotation.coeffs() *= -1.0;
-        }
-        return out;
-    }
-
-    // The farthest a corner of the model's box lies, at eighths of any step, from where the
-    // animation has it (a finer check than the steps, so a motion between them is not missed).
-    double interpolation_error_m(const TopGeometry& entry, double begin_s, const std::vector<PartPlacement>& steps) const {
-        const Eigen::AlignedBox3f box = entry.object->model->bounds();
-        double worst = 0.0;
-        for (std::size_t k = 0; k + 1 < steps.size(); ++k)
-            for (int eighth = 1; eighth < 8; ++eighth) {
-                const double f = eighth / 8.0;
-                const double t = begin_s + window_length_s * (static_cast<double>(k) + f) / static_cast<double>(steps.size() - 1);
-                const Matrix34 truth = part_transform(entry, t);
-                const PartPlacement& a = steps[k];
-                const PartPlacement& b = steps[k + 1];
-                const PartPlacement between{(1.0 - f) * a.u + f * b.u, (1.0 - f) * a.shift + f * b.shift,
-                                            (1.0 - f) * a.translation + f * b.translation, a.rotation.slerp(f, b.rotation)};
-                for (int c = 0; c < 8; ++c) {
-                    const Eigen::Vector3d p = box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>();
-                    worst = std::max(worst, (truth * p.homogeneous() - between.apply(p)).norm());
-                }
-            }
-        return worst;
-    }
-
-    // An animated object's instance for this window: the fewest steps (2, 3, 5, 9, ... up to
-    // Embree's most, 129) whose interpolation keeps the model's box within kAnimationStepError_m
-    // of the animation, each a rotation slerped about the part's node and a translation of that
-    // node interpolated linearly. A rotor turning steadily is exact at steps under half a turn;
-    // every step costs Embree's build of the top scene dearly (quaternion bounds), so a quarter
-    // of a key interval everywhere made the default scenario 3.7x slower.
-    void place_animated(TopGeometry& entry, double begin_s, int motion_steps) {
-        const scene::Model& model = *entry.object->model;
-        // The point the part turns about: its node's origin at rest (the model's origin for the
-        // triangles in no part).
-        Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
-        if (entry.part >= 0)
-            pivot = scene::rest_model_from_node(*model.animation)[model.animation->parts[static_cast<std::size_t>(entry.part)].node].translation();
-        int steps = std::max(motion_steps, 2);
-        std::vector<PartPlacement> placed = placements(entry, begin_s, steps, pivot);
-        while (steps < kMostTimeSteps && interpolation_error_m(entry, begin_s, placed) > kAnimationStepError_m) {
-            steps = std::min(kMostTimeSteps, 2 * steps - 1);
-            placed = placements(entry, begin_s, steps, pivot);
-        }
-        RTCGeometry g = entry.geometry.get();
-        rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(steps));
-        for (int step = 0; step < steps; ++step) {
-            const RTCQuaternionDecomposition q = to_embree(placed[static_cast<std::size_t>(step)]);
-            rtcSetGeometryTransformQuaternion(g, static_cast<unsigned>(step), &q);
-        }
-        rtcCommitGeometry(g);
-    }
-
-    // m = [A | b] as Embree's T * R * S with S upper triangular: A = R U (QR, U's diagonal made
-    // positive), S p = U (p - pivot), T = A pivot + b.
-    static PartPlacement decompose(const Matrix34& m, const Eigen::Vector3d& pivot) {
-        const Eigen::Matrix3d a = m.leftCols<3>();
-        const Eigen::HouseholderQR<Eigen::Matrix3d> qr(a);
-        Eigen::Matrix3d r = qr.householderQ();
-        Eigen::Matrix3d u = qr.matrixQR().triangularView<Eigen::Upper>();
-        for (int i = 0; i < 3; ++i)
-            if (u(i, i) < 0.0) {
-                u.row(i) *= -1.0;
-                r.col(i) *= -1.0;
-            }
-        if (r.determinant() < 0.0) {  // a mirrored model: the reflection goes into the scale
-            u.row(2) *= -1.0;
-            r.col(2) *= -1.0;
-        }
-        return {u, -u * pivot, a * pivot + m.col(3), Eigen::Quaterniond(r)};
-    }
-
-    static RTCQuaternionDecomposition to_embree(const PartPlacement& p) {
-        RTCQuaternionDecomposition q;
-        rtcInitQuaternionDecomposition(&q);
-        q.scale_x = static_cast<float>(p.u(0, 0)), q.scale_y = static_cast<float>(p.u(1, 1)), q.scale_z = static_cast<float>(p.u(2, 2));
-        q.skew_xy = static_cast<float>(p.u(0, 1)), q.skew_xz = static_cast<float>(p.u(0, 2)), q.skew_yz = static_cast<float>(p.u(1, 2));
-        q.shift_x = static_cast<float>(p.shift.x()), q.shift_y = static_cast<float>(p.shift.y()), q.shift_z = static_cast<float>(p.shift.z());
-        q.quaternion_r = static_cast<float>(p.rotation.w()), q.quaternion_i = static_cast<float>(p.rotation.x());
-        q.quaternion_j = static_cast<float>(p.rotation.y()), q.quaternion_k = static_cast<float>(p.rotation.z());
-        q.translation_x = static_cast<float>(p.translation.x()), q.translation_y = static_cast<float>(p.translation.y());
-        q.translation_z = static_cast<float>(p.translation.z());
-        return q;
     }
 
     // A moving object's centre at any time of the window is a linear interpolation between two
@@ -520,6 +408,23 @@ struct TracedScene::Impl {
 
     void to_embree(const Ray& ray, RTCRayHit& rh) const { raytrace::to_embree(ray, origin_world, embree_time(ray.time_s), rh); }
 
+    // An instance's transform at Embree's time `u`, as Embree interpolates it; a beam's sub-rays
+    // share one time, so the last one is kept.
+    const Matrix34& instance_transform(RTCGeometry geometry, float u) const {
+        thread_local struct {
+            RTCGeometry geometry = nullptr;
+            float time = 0.0f;
+            std::uint64_t window = 0;
+            Matrix34 m;
+        } last;
+        if (last.geometry != geometry || last.time != u || last.window != window_id) {
+            float xfm[12];
+            rtcGetGeometryTransform(geometry, u, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+            last = {geometry, u, window_id, to_matrix(xfm)};
+        }
+        return last.m;
+    }
+
     std::optional<Hit> to_hit(const Ray& ray, const RTCRayHit& rh) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
         // Every hit of the top scene is inside an instance: the static scene's, or a moving
@@ -557,20 +462,8 @@ struct TracedScene::Impl {
                 for (int k = 0; k < 3; ++k)
                     v[k] = Eigen::Vector3d(entry.vertices[3 * tri[k]], entry.vertices[3 * tri[k] + 1], entry.vertices[3 * tri[k] + 2]);
             } else {
-                // The instance's transform at this ray's time, as Embree interpolated it; a beam's
-                // sub-rays share one time, so the last one is kept.
-                thread_local struct {
-                    RTCGeometry geometry = nullptr;
-                    float time = 0.0f;
-                    std::uint64_t window = 0;
-                    Matrix34 m;
-                } last;
-                if (last.geometry != entry.geometry.get() || last.time != rh.ray.time || last.window != window_id) {
-                    float xfm[12];
-                    rtcGetGeometryTransform(entry.geometry.get(), rh.ray.time, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-                    last = {entry.geometry.get(), rh.ray.time, window_id, to_matrix(xfm)};
-                }
-                const Matrix34& m = last.m;
+                const Matrix34& m = entry.animated ? entry.animated->relative_from_model_at(rh.ray.time)
+                                                   : instance_transform(entry.geometry.get(), rh.ray.time);
                 for (int k = 0; k < 3; ++k) v[k] = m * model.mesh.positions[tri[k]].cast<double>().homogeneous();
             }
             if (const auto t = triangle_distance(o, d, v[0], v[1], v[2])) hit.range_m = *t;

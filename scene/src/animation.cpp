@@ -65,6 +65,23 @@ void sample(const AnimationChannel& c, double u, double* out) {
     }
 }
 
+// A channel's value `v` (from sample) set on a node's state.
+void apply(AnimationPath path, const double* v, NodeState& s) {
+    switch (path) {
+        case AnimationPath::translation: s.translation = {v[0], v[1], v[2]}; break;
+        case AnimationPath::rotation: s.rotation = quaternion(v).normalized(); break;
+        case AnimationPath::scale: s.scale = {v[0], v[1], v[2]}; break;
+    }
+}
+
+// A node's transform from its parent's frame.
+Eigen::Affine3d local_transform(const AnimationNode& node, const NodeState& s) {
+    Eigen::Affine3d local;
+    if (node.has_matrix) local.matrix() = node.matrix;
+    else local = Eigen::Translation3d(s.translation) * s.rotation * Eigen::Scaling(s.scale);
+    return local;
+}
+
 // Clip time: loops from the scenario's time 0 (and backwards before it).
 double clip_time(const AnimationClip& clip, double time_s) {
     if (!(clip.duration_s > 0.0)) return 0.0;
@@ -72,29 +89,24 @@ double clip_time(const AnimationClip& clip, double time_s) {
     return u < 0.0 ? u + clip.duration_s : u;
 }
 
+// Poses an animation's nodes; its buffers are reused from pose to pose.
 class Poser {
 public:
-    explicit Poser(const Animation& animation) : animation_(animation) {}
-
     // Every node's model_from_node with the chosen clips at `time_s` (or at rest when `playing` is false).
-    const std::vector<Eigen::Affine3d>& pose(const AnimationChoice& choice, double time_s, bool playing) {
-        const auto& nodes = animation_.nodes;
+    const std::vector<Eigen::Affine3d>& pose(const Animation& animation, const AnimationChoice& choice, double time_s, bool playing) {
+        animation_ = &animation;
+        const auto& nodes = animation.nodes;
         state_.resize(nodes.size());
         for (std::size_t i = 0; i < nodes.size(); ++i) state_[i] = {nodes[i].translation, nodes[i].rotation, nodes[i].scale};
         if (playing) {
-            for (std::size_t c = 0; c < animation_.clips.size(); ++c) {
+            for (std::size_t c = 0; c < animation.clips.size(); ++c) {
                 if (!choice.plays(static_cast<std::uint32_t>(c))) continue;
-                const AnimationClip& clip = animation_.clips[c];
+                const AnimationClip& clip = animation.clips[c];
                 const double u = clip_time(clip, time_s);
                 for (const AnimationChannel& channel : clip.channels) {
                     double v[4];
                     sample(channel, u, v);
-                    NodeState& s = state_[channel.node];
-                    switch (channel.path) {
-                        case AnimationPath::translation: s.translation = {v[0], v[1], v[2]}; break;
-                        case AnimationPath::rotation: s.rotation = quaternion(v).normalized(); break;
-                        case AnimationPath::scale: s.scale = {v[0], v[1], v[2]}; break;
-                    }
+                    apply(channel.path, v, state_[channel.node]);
                 }
             }
         }
@@ -109,14 +121,8 @@ private:
     // refused cycles).
     void resolve(std::size_t i) {
         if (done_[i]) return;
-        const AnimationNode& node = animation_.nodes[i];
-        Eigen::Affine3d local;
-        if (node.has_matrix) {
-            local.matrix() = node.matrix;
-        } else {
-            const NodeState& s = state_[i];
-            local = Eigen::Translation3d(s.translation) * s.rotation * Eigen::Scaling(s.scale);
-        }
+        const AnimationNode& node = animation_->nodes[i];
+        const Eigen::Affine3d local = local_transform(node, state_[i]);
         if (node.parent >= 0) {
             resolve(static_cast<std::size_t>(node.parent));
             model_from_node_[i] = model_from_node_[static_cast<std::size_t>(node.parent)] * local;
@@ -126,7 +132,7 @@ private:
         done_[i] = true;
     }
 
-    const Animation& animation_;
+    const Animation* animation_ = nullptr;
     std::vector<NodeState> state_;
     std::vector<Eigen::Affine3d> model_from_node_;
     std::vector<bool> done_;
@@ -142,21 +148,60 @@ bool plays_any(const Animation& animation, const AnimationChoice& choice) {
 }  // namespace
 
 std::vector<Eigen::Affine3d> rest_model_from_node(const Animation& animation) {
-    return Poser(animation).pose(AnimationChoice{}, 0.0, false);
+    return Poser().pose(animation, AnimationChoice{}, 0.0, false);
 }
 
 bool animates(const Model& model, const AnimationChoice& choice) {
     return model.animation && !model.animation->parts.empty() && plays_any(*model.animation, choice);
 }
 
-void part_motions(const Model& model, const AnimationChoice& choice, double time_s, std::vector<Eigen::Affine3d>& out) {
+PartMotions::PartMotions(const Model& model, const AnimationChoice& choice) : animation_(model.animation.get()), choice_(choice) {
+    if (!animation_) return;
+    const std::vector<Eigen::Affine3d> rest = rest_model_from_node(*animation_);
+    for (const AnimationPart& part : animation_->parts) {
+        rest_from_model_.push_back(rest[part.node].inverse());
+        // The part's node and those above it, root first, each with the chosen channels on it in
+        // the order the Poser applies them (a later one on the same path wins).
+        std::vector<Link>& chain = chains_.emplace_back();
+        for (int n = static_cast<int>(part.node); n >= 0; n = animation_->nodes[static_cast<std::size_t>(n)].parent)
+            chain.insert(chain.begin(), Link{static_cast<std::uint32_t>(n), {}});
+        for (Link& link : chain)
+            for (std::size_t c = 0; c < animation_->clips.size(); ++c) {
+                if (!choice.plays(static_cast<std::uint32_t>(c))) continue;
+                for (const AnimationChannel& channel : animation_->clips[c].channels)
+                    if (channel.node == link.node) link.channels.emplace_back(&animation_->clips[c], &channel);
+            }
+    }
+}
+
+Eigen::Affine3d PartMotions::at(std::size_t part, double time_s) const {
+    Eigen::Affine3d model_from_node;
+    bool root = true;
+    for (const Link& link : chains_[part]) {
+        const AnimationNode& node = animation_->nodes[link.node];
+        NodeState s{node.translation, node.rotation, node.scale};
+        for (const auto& [clip, channel] : link.channels) {
+            double v[4];
+            sample(*channel, clip_time(*clip, time_s), v);
+            apply(channel->path, v, s);
+        }
+        const Eigen::Affine3d local = local_transform(node, s);
+        model_from_node = root ? local : model_from_node * local;
+        root = false;
+    }
+    return model_from_node * rest_from_model_[part];
+}
+
+void PartMotions::at(double time_s, std::vector<Eigen::Affine3d>& out) const {
     out.clear();
-    if (!model.animation) return;
-    const Animation& animation = *model.animation;
-    Poser rest_poser(animation), poser(animation);
-    const std::vector<Eigen::Affine3d>& rest = rest_poser.pose(choice, 0.0, false);
-    const std::vector<Eigen::Affine3d>& now = poser.pose(choice, time_s, true);
-    for (const AnimationPart& part : animation.parts) out.push_back(now[part.node] * rest[part.node].inverse());
+    if (!animation_) return;
+    thread_local Poser poser;
+    const std::vector<Eigen::Affine3d>& now = poser.pose(*animation_, choice_, time_s, true);
+    for (std::size_t p = 0; p < animation_->parts.size(); ++p) out.push_back(now[animation_->parts[p].node] * rest_from_model_[p]);
+}
+
+void part_motions(const Model& model, const AnimationChoice& choice, double time_s, std::vector<Eigen::Affine3d>& out) {
+    PartMotions(model, choice).at(time_s, out);
 }
 
 Eigen::AlignedBox3d animated_bounds(const Model& model, const AnimationChoice& choice) {
@@ -190,13 +235,14 @@ Eigen::AlignedBox3d animated_bounds(const Model& model, const AnimationChoice& c
         for (const AnimationChannel& channel : animation.clips[c].channels) keys = std::max(keys, channel.times_s.size());
     }
     const int samples = static_cast<int>(std::max<std::size_t>(512, 16 * keys));
+    const PartMotions motions(model, choice);
     std::vector<Eigen::Affine3d> motion;
     std::vector<Eigen::Vector3d> previous(8 * animation.parts.size());
     // The corners of a part's box move by at most `step` between samples; anything of the part lies
     // within step / 2 of a sampled placement's box (the path between two samples is nearly straight).
     double step = 0.0;
     for (int s = 0; s <= samples; ++s) {
-        part_motions(model, choice, duration * s / samples, motion);
+        motions.at(duration * s / samples, motion);
         for (std::size_t p = 0; p < animation.parts.size(); ++p) {
             if (part_box[p].isEmpty()) continue;
             for (int k = 0; k < 8; ++k) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ladarsim/raytrace/traced_scene.h"
+#include "../support/rays.h"
 #include "../support/scene_builders.h"
 
 using namespace ladarsim;
@@ -16,25 +17,12 @@ using raytrace::TracedScene;
 
 namespace {
 
-Ray ray_from(const Eigen::Vector3d& origin, const Eigen::Vector3d& towards, double time_s = 0.0) {
-    Ray r;
-    r.origin_world = origin;
-    r.direction = (towards - origin).normalized();
-    r.time_s = time_s;
-    return r;
-}
-
 /// Distance along a unit ray to the near side of a sphere; the ray must hit it.
 double sphere_distance(const Ray& r, const Eigen::Vector3d& centre, double radius) {
     const Eigen::Vector3d oc = r.origin_world - centre;
     const double b = oc.dot(r.direction);
     const double c = oc.squaredNorm() - radius * radius;
     return -b - std::sqrt(b * b - c);
-}
-
-/// Distance along a unit ray to the plane through `point` with normal `n`.
-double plane_distance(const Ray& r, const Eigen::Vector3d& point, const Eigen::Vector3d& n) {
-    return (point - r.origin_world).dot(n) / r.direction.dot(n);
 }
 
 }  // namespace

@@ -38,9 +38,7 @@ BeamCone::BeamCone(const FootprintContext& context, const std::vector<scene::Sce
             });
             shape.part.push_back(in == parts.end() ? -1 : static_cast<std::int32_t>(in - parts.begin()));
         }
-        shape.model = object.model.get();
-        shape.animation = object.animation;
-        shape.animated = scene::animates(*object.model, object.animation);
+        if (scene::animates(*object.model, object.animation)) shape.motions.emplace(*object.model, object.animation);
         for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);
     }
 }
@@ -142,13 +140,13 @@ void BeamCone::seed_offsets(const raytrace::ObjectBounds& b, const TargetSeeds& 
     // A beating wing or a turning blade is where its animation has it at the beam's time, not at
     // rest: seeds taken at rest missed them.
     thread_local std::vector<Eigen::Affine3d> motions;
-    if (seeds.animated) scene::part_motions(*seeds.model, seeds.animation, time_s, motions);
+    if (seeds.motions) seeds.motions->at(time_s, motions);
     // Nearest the axis by the tangents of the offsets (as good as the angles this close to it).
     thread_local std::vector<std::pair<double, Eigen::Vector3d>> candidates;
     candidates.clear();
     for (std::size_t i = 0; i < seeds.points.size(); ++i) {
         const std::int32_t part = seeds.part[i];
-        const Eigen::Vector3d p = seeds.animated && part >= 0 ? Eigen::Vector3d(motions[static_cast<std::size_t>(part)] * seeds.points[i])
+        const Eigen::Vector3d p = seeds.motions && part >= 0 ? Eigen::Vector3d(motions[static_cast<std::size_t>(part)] * seeds.points[i])
                                                               : seeds.points[i];
         const Eigen::Vector3d c = beam_from_world * (b.world_from_model * p.homogeneous() - origin);
         if (!(c.x() > 0.0)) continue;

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "footprint_context.h"
+#include "ladarsim/scene/animation.h"
 #include "ladarsim/scene/scene.h"
 
 namespace ladarsim::sensor_model {
@@ -20,9 +21,8 @@ struct TargetSeeds {
     std::vector<Eigen::Vector3d> points;  ///< facet centroids at rest (model coordinates)
     /// The animation part each point's facet belongs to (-1: none, it moves with the model).
     std::vector<std::int32_t> part;
-    const scene::Model* model = nullptr;
-    scene::AnimationChoice animation;
-    bool animated = false;  ///< some part moves: points are placed at each beam's time
+    /// Set when some part moves: points are placed at each beam's time.
+    std::optional<scene::PartMotions> motions;
     double max_reflectance = 0.0;  ///< of its materials: bounds its echo
 };
 

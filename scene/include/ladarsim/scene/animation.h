@@ -3,6 +3,7 @@
 // the mesh each animated node carries, and where they are at any time.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -85,6 +86,27 @@ bool animates(const Model& model, const AnimationChoice& choice);
 /// part's rest vertices go in the model frame. Samplers interpolate as glTF says (linear rotation
 /// by shortest-path slerp); a clip's time is time_s modulo its duration.
 void part_motions(const Model& model, const AnimationChoice& choice, double time_s, std::vector<Eigen::Affine3d>& out);
+
+/// part_motions for one model and choice at many times (a ray's own time each): the rest pose is
+/// resolved once. The model must outlive it; `at` may run on several threads at once.
+class PartMotions {
+public:
+    PartMotions(const Model& model, const AnimationChoice& choice);
+    /// Every part's motion, as part_motions gives them.
+    void at(double time_s, std::vector<Eigen::Affine3d>& out) const;
+    /// One part's motion, the same to the bit, from its own node's chain and channels only.
+    Eigen::Affine3d at(std::size_t part, double time_s) const;
+
+private:
+    struct Link {
+        std::uint32_t node;
+        std::vector<std::pair<const AnimationClip*, const AnimationChannel*>> channels;
+    };
+    const Animation* animation_;
+    AnimationChoice choice_;
+    std::vector<Eigen::Affine3d> rest_from_model_;  // each part's rest placement, inverted
+    std::vector<std::vector<Link>> chains_;         // each part's node and its ancestors, root first
+};
 
 /// A box in the model frame holding the whole mesh at every time of the chosen animations:
 /// sampled densely over each clip's loop and padded for what lies between samples.
