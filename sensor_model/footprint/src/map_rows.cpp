@@ -182,6 +182,8 @@ void MapRows::start_row(int row_index, const Eigen::Matrix3d& world_from_gimbal)
         }
     }
     row.lines[lines].first_piece = static_cast<std::uint32_t>(row.pieces.size());
+    row.piece_y_hi.resize(row.pieces.size());
+    for (std::size_t i = 0; i < row.pieces.size(); ++i) row.piece_y_hi[i] = row.pieces[i].y_hi;
     hits.resize(rays.size());
     if (!rays.empty()) context_.traced.trace_static(rays, hits);
     for (std::size_t q = 0; q < rays.size(); ++q) {
@@ -245,9 +247,9 @@ Integration MapRows::integrate(const BeamSetting& beam, const FootprintPart& par
 
     for (const Stretch& s : stretches) {
         const Line& line = row.lines[s.line];
-        const Piece* begin = row.pieces.data() + line.first_piece;
+        const double* y_hi = row.piece_y_hi.data();
         const Piece* end = row.pieces.data() + row.lines[s.line + 1].first_piece;
-        const Piece* p = std::upper_bound(begin, end, s.y_lo, [](double y, const Piece& q) { return y < q.y_hi; });
+        const Piece* p = row.pieces.data() + (std::upper_bound(y_hi + line.first_piece, y_hi + row.lines[s.line + 1].first_piece, s.y_lo) - y_hi);
         for (; p != end && p->y_lo < s.y_hi; ++p) {
             if (p->object_id == kGapPiece) continue;
             const bool clipped_lo = p->y_lo < s.y_lo, clipped_hi = p->y_hi > s.y_hi;

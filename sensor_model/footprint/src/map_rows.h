@@ -59,6 +59,9 @@ private:
         Eigen::Matrix3d world_from_row;  ///< the gimbal frame turned to the row's middle azimuth
         std::vector<Line> lines;         ///< by increasing azimuth, a last one closing the pieces
         std::vector<Piece> pieces;
+        /// Each piece's y_hi apart: a beam's search along a line touches a cache line per step of
+        /// it instead of per piece.
+        std::vector<double> piece_y_hi;
     };
 
     /// The offsets along `line` of `row` of elevation offset y (footprint units): t of (1, X, t).

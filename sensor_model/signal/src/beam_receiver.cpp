@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <utility>
 
 #include "ladarsim/sensor_model/sensor/physical_constants.h"
 #include "ladarsim/sensor_model/signal/range_equation.h"
@@ -16,15 +17,27 @@ namespace {
 constexpr double kMergedSigmas = 0.1;
 constexpr double kMergedWidths = 0.02;
 
+/// Echoes' energy and energy-weighted range sum.
+std::pair<double, double> energy_and_range_sum(std::span<const Echo> echoes) {
+    double energy = 0.0, sum = 0.0;
+    for (const Echo& e : echoes) {
+        energy += e.energy_j;
+        sum += e.energy_j * e.range_m;
+    }
+    return {energy, sum};
+}
+
+/// merged(echoes).range_m without their spread, which costs a second pass.
+double merged_range(std::span<const Echo> echoes) {
+    const auto [energy, sum] = energy_and_range_sum(echoes);
+    return energy > 0.0 ? sum / energy : echoes.front().range_m;
+}
+
 /// Echoes as one: their energy at their energy-weighted mean range, stretched by the standard
 /// deviation of their ranges (each echo of a whole patch brings its own spread); the first one's
 /// range, spread and surface where they carry no energy.
 Echo merged(std::span<const Echo> echoes) {
-    double energy = 0.0, mean = 0.0;
-    for (const Echo& e : echoes) {
-        energy += e.energy_j;
-        mean += e.energy_j * e.range_m;
-    }
+    auto [energy, mean] = energy_and_range_sum(echoes);
     if (!(energy > 0.0)) return {echoes.front().range_m, energy, echoes.front().surface, echoes.front().spread_m};
     mean /= energy;
     double variance = 0.0;
@@ -136,7 +149,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
         BeamSurface& s = surfaces[i];
         for (Echo& e : s.echoes) e.surface = i;
         if (!noise_ || s.source != ReturnSource::surface || s.echoes.empty()) continue;
-        const double range = merged(s.echoes).range_m;
+        const double range = merged_range(s.echoes);
         const double spot = range * std::sqrt(sensor_.transmitter.divergence_mrad * sensor_.transmitter.divergence_el_mrad) * kMrad *
                             std::sqrt(std::max(s.weight, 1e-12));
         const double factor = speckle.gamma_unit_mean(
@@ -187,7 +200,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
                 const BeamSurface& s = surfaces[p.surface];
                 r.object_id = s.object_id;
                 r.source = s.source;
-                const double true_range = merged(s.echoes).range_m;
+                const double true_range = merged_range(s.echoes);
                 if (sensor_.receiver.range_folding)
                     r.pulse_offset = static_cast<std::uint8_t>(std::min(std::floor(true_range / unambiguous_range_m_), 255.0));
             }

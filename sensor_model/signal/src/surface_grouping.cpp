@@ -35,24 +35,28 @@ void sort_by_object_and_range(const std::vector<SurfaceEcho>& echoes, std::vecto
         return;
     }
     // Eight bytes a key: four of the range as a float (low first), then four of the object id.
+    // Only the bytes that differ between keys are counted and sorted on (a map's beam: its ranges'
+    // three low bytes, one object): a byte every key shares leaves the order as it is.
     thread_local std::vector<std::array<std::uint32_t, 2>> keys;
     keys.resize(n);
-    std::array<std::array<std::uint32_t, 256>, 8> counts{};
+    std::array<std::uint32_t, 2> differ{};
     for (std::size_t i = 0; i < n; ++i) {
         // +0 for a negative zero or any negative range (none reaches here), so that bits order.
         const float range = echoes[i].range_m > 0.0 ? static_cast<float>(echoes[i].range_m) : 0.0f;
         std::uint32_t bits;
         std::memcpy(&bits, &range, sizeof bits);
         keys[i] = {bits, echoes[i].object_id};
-        for (int b = 0; b < 8; ++b) ++counts[static_cast<std::size_t>(b)][(keys[i][static_cast<std::size_t>(b / 4)] >> (8 * (b % 4))) & 0xFFu];
+        differ[0] |= bits ^ keys[0][0];
+        differ[1] |= echoes[i].object_id ^ keys[0][1];
     }
     thread_local std::vector<std::uint32_t> other;
     other.resize(n);
     for (int b = 0; b < 8; ++b) {
-        auto& count = counts[static_cast<std::size_t>(b)];
         const std::size_t word = static_cast<std::size_t>(b / 4);
         const int shift = 8 * (b % 4);
-        if (count[(keys[order[0]][word] >> shift) & 0xFFu] == n) continue;  // every key shares this byte
+        if (!((differ[word] >> shift) & 0xFFu)) continue;
+        std::array<std::uint32_t, 256> count{};
+        for (std::size_t i = 0; i < n; ++i) ++count[(keys[i][word] >> shift) & 0xFFu];
         std::uint32_t start = 0;
         for (std::uint32_t& c : count) {
             const std::uint32_t here = c;
