@@ -20,7 +20,8 @@ namespace ladarsim::apps {
 namespace {
 
 struct TrainClassifierCommand {
-    std::string campaign_dir, model_file;
+    std::vector<std::string> campaign_dirs;
+    std::string model_file;
     std::vector<std::string> splits{"train"};
     DetectorOptions options;
     detect::ClassifierTraining training;
@@ -29,7 +30,7 @@ struct TrainClassifierCommand {
     CLI::App* add(CLI::App& app) {
         auto* cmd = app.add_subcommand("train-classifier",
                                        "Train the track classifier (drone, bird, plane, clutter) on a rendered campaign's tracks");
-        cmd->add_option("campaign", campaign_dir, "Campaign directory (`ladarsim campaign --out`)")->required();
+        cmd->add_option("campaign", campaign_dirs, "Campaign directories (`ladarsim campaign --out`), trained on together")->required();
         cmd->add_option("--out", model_file, "Model file to write (XGBoost JSON)")->required();
         cmd->add_option("--split", splits, "Splits to train on (default train)")->check(CLI::IsMember({"train", "val", "test"}));
         cmd->add_option("--rounds", training.rounds, "Boosting rounds")->check(CLI::Range(1, 10000));
@@ -40,23 +41,25 @@ struct TrainClassifierCommand {
 
     int run() {
         check_replaceable(model_file, "--out", force);
-        const std::filesystem::path dir(campaign_dir);
-        const std::filesystem::path index_file = dir / "campaign.json";
-        const nlohmann::json index = read_json(index_file);
-        if (!index.contains("sequences") || !index["sequences"].is_array())
-            throw InputError(index_file.string(), "sequences", "missing: not a finished campaign (`ladarsim campaign` writes it last)");
         std::vector<detect::TrackFeatures> features;
         std::vector<std::size_t> labels;
         int used = 0;
-        for (const auto& entry : index["sequences"]) {
-            const std::string split = entry.value("split", "");
-            if (std::find(splits.begin(), splits.end(), split) == splits.end()) continue;
-            const detect::Sequence s = detect::load_sequence(dir / entry.at("directory").get<std::string>());
-            detect::add_training_rows(s, options.config(), features, labels);
-            ++used;
+        for (const std::string& campaign_dir : campaign_dirs) {
+            const std::filesystem::path dir(campaign_dir);
+            const std::filesystem::path index_file = dir / "campaign.json";
+            const nlohmann::json index = read_json(index_file);
+            if (!index.contains("sequences") || !index["sequences"].is_array())
+                throw InputError(index_file.string(), "sequences", "missing: not a finished campaign (`ladarsim campaign` writes it last)");
+            for (const auto& entry : index["sequences"]) {
+                const std::string split = entry.value("split", "");
+                if (std::find(splits.begin(), splits.end(), split) == splits.end()) continue;
+                const detect::Sequence s = detect::load_sequence(dir / entry.at("directory").get<std::string>());
+                detect::add_training_rows(s, options.config(), features, labels);
+                ++used;
+            }
         }
         if (features.empty())
-            throw InputError(index_file.string(), "sequences", "no tracks in the " + std::to_string(used) + " sequences of the chosen splits to train on");
+            throw InputError(campaign_dirs.front(), "sequences", "no tracks in the " + std::to_string(used) + " sequences of the chosen splits to train on");
         std::array<int, detect::kTrackClassCount> per_class{};
         for (std::size_t l : labels) ++per_class[l];
         const detect::TrackClassifier model = detect::TrackClassifier::train(features, labels, training);

@@ -6,6 +6,9 @@ source "$(dirname "$0")/harness.sh"
 "$bin" train-classifier "$work/c" --out "$work/model.json" >"$work/stdout" 2>&1 || fail "train-classifier failed: $(cat "$work/stdout")"
 grep -q "trained on [0-9]* rows from 4 sequences" "$work/stdout" || fail "train-classifier did not say what it trained on: $(cat "$work/stdout")"
 grep -q "features by share of the gain: [a-z_0-9]* [01]\.[0-9]*" "$work/stdout" || fail "train-classifier did not say which features mattered: $(cat "$work/stdout")"
+# Several campaigns are trained on together.
+"$bin" train-classifier "$work/c" "$work/c" --out "$work/model2.json" >"$work/stdout2" 2>&1 || fail "train-classifier on two campaigns failed: $(cat "$work/stdout2")"
+grep -q "trained on [0-9]* rows from 8 sequences" "$work/stdout2" || fail "train-classifier did not train on both campaigns: $(cat "$work/stdout2")"
 # A missing campaign and a model file ladarsim did not write are refused in one line.
 "$bin" train-classifier "$work/nowhere" --out "$work/m2.json" >/dev/null 2>"$work/stderr" && fail "train-classifier accepted a missing campaign"
 [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "the refusal is not one line: $(cat "$work/stderr")"
