@@ -175,12 +175,52 @@ Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, doub
     return out;
 }
 
+bool small_enough(const Cluster& cluster, double max_diagonal_m, double beam_spread_rad) {
+    return cluster.box.size.norm() <= max_diagonal_m + beam_spread_rad * cluster.box.centre.norm();
+}
+
 std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max_diagonal_m, double beam_spread_rad,
                                        std::size_t min_points) {
-    std::erase_if(clusters, [&](const Cluster& c) {
-        return c.box.size.norm() > max_diagonal_m + beam_spread_rad * c.box.centre.norm() || c.points.size() < min_points;
-    });
+    std::erase_if(clusters, [&](const Cluster& c) { return !small_enough(c, max_diagonal_m, beam_spread_rad) || c.points.size() < min_points; });
     return clusters;
+}
+
+std::vector<Cluster> beam_connected(const Cluster& cluster, double az_pitch_rad, double el_pitch_rad) {
+    struct Direction {
+        double azimuth, elevation;
+        std::size_t index;
+    };
+    std::vector<Direction> directions;
+    for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        const Eigen::Vector3d p = cluster.points[i].cast<double>();
+        directions.push_back({std::atan2(p.y(), p.x()), std::atan2(p.z(), p.head<2>().norm()), i});
+    }
+    std::sort(directions.begin(), directions.end(), [](const Direction& a, const Direction& b) { return a.azimuth < b.azimuth; });
+    std::vector<int> parent(directions.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    // Neighbours: the same or the next line, at most two beams apart along it (one beam missed).
+    const double max_az = 2.5 * az_pitch_rad, max_el = 1.5 * el_pitch_rad;
+    for (std::size_t i = 0; i < directions.size(); ++i)
+        for (std::size_t j = i + 1; j < directions.size() && directions[j].azimuth - directions[i].azimuth <= max_az; ++j)
+            if (std::abs(directions[j].elevation - directions[i].elevation) <= max_el) {
+                const int a = find(parent, static_cast<int>(i)), b = find(parent, static_cast<int>(j));
+                if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+            }
+    // Pieces in the order of their first point in the cluster, points in the cluster's order.
+    std::vector<std::size_t> root_of(cluster.points.size());
+    for (std::size_t k = 0; k < directions.size(); ++k) root_of[directions[k].index] = static_cast<std::size_t>(find(parent, static_cast<int>(k)));
+    std::vector<Cluster> pieces;
+    std::vector<long> piece_of(directions.size(), -1);
+    for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        long& piece = piece_of[root_of[i]];
+        if (piece < 0) {
+            piece = static_cast<long>(pieces.size());
+            pieces.emplace_back();
+        }
+        pieces[static_cast<std::size_t>(piece)].points.push_back(cluster.points[i]);
+    }
+    for (Cluster& c : pieces) c.box = bounding_box(c.points);
+    return pieces;
 }
 
 std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double tolerance_m, std::size_t min_points) {
