@@ -120,6 +120,7 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
     d.frame = frame;
     d.time_s = time_s;
     const Points foreground = background_.subtract(points);
+    const IntensityOf intensity_of = intensity.empty() ? IntensityOf({}, {}) : IntensityOf(points, intensity);
 
     // calRange: the range of the target the history says we are following.
     std::optional<Eigen::Vector3d> expected = fir_prediction(time_s);
@@ -165,7 +166,12 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
                 else for (Cluster& piece : beam_connected(c, az_pitch_rad, line_pitch_rad)) cores.push_back(std::move(piece));
             }
             clusters = std::move(cores);
-            for (Cluster& c : clusters) c = without_sparse_lines(c, line_pitch_rad, config_.sparse_line_fraction);
+            for (Cluster& c : clusters) {
+                std::vector<float> echoes;
+                if (!intensity_of.empty())
+                    for (const auto& p : c.points) echoes.push_back(intensity_of(p));
+                c = without_sparse_lines(c, line_pitch_rad, config_.sparse_line_fraction, echoes);
+            }
         }
         return plausible_targets(std::move(clusters), config_.max_diagonal_m, config_.footprint_divergences * divergence_rad, min_points);
     };
@@ -216,7 +222,6 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
         d.box.size = d.box.size.cwiseMax(Eigen::Vector3d::Constant(config_.min_box_m));
         d.sensor_box = sensor_aware_box(chosen->box, config_.footprint_divergences * divergence_rad, config_.target_size_m);
         if (!intensity.empty() && config_.min_peak_ratio > 0.0) {
-            const IntensityOf intensity_of(points, intensity);
             std::vector<float> echoes;
             for (const auto& p : chosen->points) echoes.push_back(intensity_of(p));
             if (const auto pair = strongest_line_pair(chosen->points, echoes, line_pitch_rad)) {

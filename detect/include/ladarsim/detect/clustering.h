@@ -68,8 +68,15 @@ Points without_volume_echoes(const Points& points, double pitch_rad, double tole
 /// with it in range and join it from another line come one or two a line, and would move its box
 /// by half a line pitch. Lines are told apart by elevation (sensor frame): a gap of more than half
 /// `line_pitch_rad` starts a new one. Keeps the lines holding at least `min_fraction` of the
-/// fullest line's returns.
-Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction);
+/// fullest line's returns and, given one `intensity` per point, a sparser line whose returns lie
+/// within the fullest line's span of azimuth and whose strongest echo is weaker than that line's
+/// median echo: a target's line further from it sees it through the beam's fringe (a few beams
+/// above the threshold, under the fullest line's run, as weak as that line's edges), as at 1.9 km
+/// where the drone lies midway and one line holds 2 returns to the other's 9; a cloud's return
+/// comes from anywhere within the clustering radius, with the cloud's own strength (dataset 3's
+/// front layer echoes 4 times the drone's peak, 10 times its median).
+Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction,
+                             const std::vector<float>& intensity = {});
 
 /// Whether a cluster's box diagonal is within `max_diagonal_m` plus `beam_spread_rad` times its
 /// range (plausible_targets' size test).
