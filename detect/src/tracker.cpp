@@ -226,9 +226,18 @@ Detection TargetTracker::process(std::uint64_t frame, double time_s, const Point
             for (const auto& p : chosen->points) echoes.push_back(intensity_of(p));
             if (const auto pair = strongest_line_pair(chosen->points, echoes, line_pitch_rad)) {
                 // The target crossed to another pair of lines: its offset from their midpoint jumped.
-                if (!line_pairs_.empty() && std::abs(line_pairs_.back().lower_rad - pair->lower_rad) > 0.5 * line_pitch_rad)
+                // The lines move with the gimbal, so pairs are compared about the boresight (dataset 3
+                // over Autzen: the gimbal follows the diving drone a line pitch a frame, and the same
+                // pair about it lay a pitch lower in every frame).
+                LinePair about_boresight = *pair;
+                if (boresight) {
+                    const double boresight_el = std::asin(std::clamp(boresight->z(), -1.0, 1.0));
+                    about_boresight.lower_rad -= boresight_el;
+                    about_boresight.upper_rad -= boresight_el;
+                }
+                if (!line_pairs_.empty() && std::abs(line_pairs_.back().lower_rad - about_boresight.lower_rad) > 0.5 * line_pitch_rad)
                     line_pairs_.clear();
-                line_pairs_.push_back(*pair);
+                line_pairs_.push_back(about_boresight);
                 while (static_cast<int>(line_pairs_.size()) > config_.line_profile_frames) line_pairs_.pop_front();
                 double log_ratio = 0.0;
                 for (const LinePair& l : line_pairs_) log_ratio += l.log_ratio;
