@@ -39,6 +39,25 @@ Points joined(Points a, const Points& b) {
     return a;
 }
 
+/// The cued tracker (V-RBNN) over `frames` frames of a drone closing at 25 m/s from 660 m, with
+/// `clutter(range)` joined to it in frames [first, last): each frame must detect the drone's own box.
+template <typename Clutter>
+void check_followed(int frames, int first, int last, const Clutter& clutter) {
+    DetectorConfig config;
+    config.lambda = 180.0;
+    TargetTracker tracker(config, kPaperSensor, {});
+    for (int k = 0; k < frames; ++k) {
+        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
+        const Points target = drone(range, 0.0, 0.0);
+        const Points frame = k >= first && k < last ? joined(target, clutter(range)) : target;
+        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
+        INFO("frame " << k);
+        REQUIRE(d.found);
+        CHECK_FALSE(d.predicted);
+        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
+    }
+}
+
 /// A still cloud's clumps beside the drone: four, 1.5-6 m from it, each 8 beams climbing 0.12 m
 /// a beam (outlier removal keeps the inner 6, 0.6 m deep).
 Points with_cloud_clumps(Points frame) {
@@ -78,21 +97,9 @@ TEST_CASE("clutter: a coherent core frees a drone from the cloud returns chained
 }
 
 TEST_CASE("clutter: the cued tracker keeps a drone flying into a cloud whose returns chain to it", "[detect][clutter]") {
-    DetectorConfig config;
-    config.lambda = 180.0;
-    TargetTracker tracker(config, kPaperSensor, {});
-    for (int k = 0; k < 12; ++k) {
-        const double t = 0.05 * k, range = 660.0 - 25.0 * t;  // 25 m/s towards the sensor
-        const Points target = drone(range, 0.0, 0.0);
-        // Frames 4-7: the cloud's returns climb from the drone's last beam 2.9 m behind it; with
-        // them the cluster is too large to be the target, and the drone would be lost.
-        const Points frame = k >= 4 && k < 8 ? joined(target, backscatter(range + 0.25, 8 * kPitchAz, 0.0, 30, 0.09)) : target;
-        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
-        INFO("frame " << k);
-        REQUIRE(d.found);
-        CHECK_FALSE(d.predicted);
-        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
-    }
+    // Frames 4-7: the cloud's returns climb from the drone's last beam 2.9 m behind it; with them
+    // the cluster is too large to be the target, and the drone would be lost.
+    check_followed(12, 4, 8, [](double range) { return backscatter(range + 0.25, 8 * kPitchAz, 0.0, 30, 0.09); });
 }
 
 TEST_CASE("clutter: tracking every target, a cloud's clumps beside a drone make no track", "[detect][clutter][multi_target]") {
@@ -242,22 +249,10 @@ TEST_CASE("clutter: a return whose beam holds another near it and whose neighbou
 }
 
 TEST_CASE("clutter: the cued tracker keeps a drone inside a volume whose returns agree in range from line to line", "[detect][clutter]") {
-    DetectorConfig config;
-    config.lambda = 180.0;
-    TargetTracker tracker(config, kPaperSensor, {});
-    for (int k = 0; k < 12; ++k) {
-        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
-        const Points target = drone(range, 0.0, 0.0);
-        // Frames 4-7: the volume about the drone chains to it (0.30 m from its returns, under the
-        // clustering radius), and its slab 0.3 m beyond it is the cluster's core: too wide to be
-        // the target, and the drone would be lost.
-        const Points frame = k >= 4 && k < 8 ? joined(target, volume_about(range, 8)) : target;
-        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
-        INFO("frame " << k);
-        REQUIRE(d.found);
-        CHECK_FALSE(d.predicted);
-        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
-    }
+    // Frames 4-7: the volume about the drone chains to it (0.30 m from its returns, under the
+    // clustering radius), and its slab 0.3 m beyond it is the cluster's core: too wide to be the
+    // target, and the drone would be lost.
+    check_followed(12, 4, 8, [](double range) { return volume_about(range, 8); });
 }
 
 TEST_CASE("clutter: a sparse line under the fullest line's run, weaker than its median echo, is the target's", "[detect][clutter]") {
@@ -328,20 +323,8 @@ TEST_CASE("clutter: a cloud's layer at a drone's range falls away from it beam t
 }
 
 TEST_CASE("clutter: the cued tracker follows a drone across a cloud's layer at its range", "[detect][clutter]") {
-    DetectorConfig config;
-    config.lambda = 180.0;
-    TargetTracker tracker(config, kPaperSensor, {});
-    for (int k = 0; k < 10; ++k) {
-        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
-        const Points target = drone(range, 0.0, 0.0);
-        // Frames 4-6: the layer chains to the drone into one core too wide to be the target.
-        const Points frame = k >= 4 && k < 7 ? joined(target, layer_about(range)) : target;
-        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
-        INFO("frame " << k);
-        REQUIRE(d.found);
-        CHECK_FALSE(d.predicted);
-        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
-    }
+    // Frames 4-6: the layer chains to the drone into one core too wide to be the target.
+    check_followed(10, 4, 7, layer_about);
 }
 
 TEST_CASE("clutter: before a history, the cued candidate's range sets the clustering radius", "[detect][clutter]") {
