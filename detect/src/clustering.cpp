@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 
@@ -151,7 +152,7 @@ Points without_volume_echoes(const Points& points, double pitch_rad, double tole
     return out;
 }
 
-Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction) {
+Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction, const std::vector<float>& intensity) {
     std::vector<std::pair<double, std::size_t>> elevation;
     for (std::size_t i = 0; i < cluster.points.size(); ++i) {
         const Eigen::Vector3d p = cluster.points[i].cast<double>();
@@ -166,21 +167,86 @@ Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, doub
         ++line_size.back();
     }
     if (line_size.size() < 2) return cluster;
-    const double fullest = static_cast<double>(*std::max_element(line_size.begin(), line_size.end()));
+    const auto fullest_line = static_cast<std::size_t>(std::max_element(line_size.begin(), line_size.end()) - line_size.begin());
+    const double fullest = static_cast<double>(line_size[fullest_line]);
+    std::vector<bool> kept_line(line_size.size());
+    for (std::size_t l = 0; l < line_size.size(); ++l) kept_line[l] = static_cast<double>(line_size[l]) >= min_fraction * fullest;
+    if (intensity.size() == cluster.points.size()) {
+        // Azimuths about the fullest line's first return, so that a cluster straddling +-pi is whole.
+        std::size_t first = 0;
+        while (line_of[first] != fullest_line) ++first;
+        const double reference_az = std::atan2(cluster.points[first].y(), cluster.points[first].x());
+        std::vector<double> azimuth(cluster.points.size());
+        for (std::size_t i = 0; i < cluster.points.size(); ++i)
+            azimuth[i] = std::remainder(std::atan2(cluster.points[i].y(), cluster.points[i].x()) - reference_az, 2.0 * std::numbers::pi);
+        std::vector<double> low(line_size.size(), std::numeric_limits<double>::infinity()), high(line_size.size(), -std::numeric_limits<double>::infinity());
+        std::vector<float> peak(line_size.size(), 0.0f), fullest_echoes;
+        for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+            low[line_of[i]] = std::min(low[line_of[i]], azimuth[i]);
+            high[line_of[i]] = std::max(high[line_of[i]], azimuth[i]);
+            peak[line_of[i]] = std::max(peak[line_of[i]], intensity[i]);
+            if (line_of[i] == fullest_line) fullest_echoes.push_back(intensity[i]);
+        }
+        // The fullest line's median echo: a cloud's return that joined it does not move it.
+        const auto middle = fullest_echoes.begin() + static_cast<std::ptrdiff_t>(fullest_echoes.size() / 2);
+        std::nth_element(fullest_echoes.begin(), middle, fullest_echoes.end());
+        for (std::size_t l = 0; l < line_size.size(); ++l)
+            kept_line[l] = kept_line[l] || (low[l] >= low[fullest_line] && high[l] <= high[fullest_line] && peak[l] < *middle);
+    }
     Cluster out;
     for (std::size_t i = 0; i < cluster.points.size(); ++i)
-        if (static_cast<double>(line_size[line_of[i]]) >= min_fraction * fullest) out.points.push_back(cluster.points[i]);
+        if (kept_line[line_of[i]]) out.points.push_back(cluster.points[i]);
     if (out.points.size() == cluster.points.size()) return cluster;
     out.box = bounding_box(out.points);
     return out;
 }
 
+bool small_enough(const Cluster& cluster, double max_diagonal_m, double beam_spread_rad) {
+    return cluster.box.size.norm() <= max_diagonal_m + beam_spread_rad * cluster.box.centre.norm();
+}
+
 std::vector<Cluster> plausible_targets(std::vector<Cluster> clusters, double max_diagonal_m, double beam_spread_rad,
                                        std::size_t min_points) {
-    std::erase_if(clusters, [&](const Cluster& c) {
-        return c.box.size.norm() > max_diagonal_m + beam_spread_rad * c.box.centre.norm() || c.points.size() < min_points;
-    });
+    std::erase_if(clusters, [&](const Cluster& c) { return !small_enough(c, max_diagonal_m, beam_spread_rad) || c.points.size() < min_points; });
     return clusters;
+}
+
+std::vector<Cluster> beam_connected(const Cluster& cluster, double az_pitch_rad, double el_pitch_rad) {
+    struct Direction {
+        double azimuth, elevation;
+        std::size_t index;
+    };
+    std::vector<Direction> directions;
+    for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        const Eigen::Vector3d p = cluster.points[i].cast<double>();
+        directions.push_back({std::atan2(p.y(), p.x()), std::atan2(p.z(), p.head<2>().norm()), i});
+    }
+    std::sort(directions.begin(), directions.end(), [](const Direction& a, const Direction& b) { return a.azimuth < b.azimuth; });
+    std::vector<int> parent(directions.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    // Neighbours: the same or the next line, at most two beams apart along it (one beam missed).
+    const double max_az = 2.5 * az_pitch_rad, max_el = 1.5 * el_pitch_rad;
+    for (std::size_t i = 0; i < directions.size(); ++i)
+        for (std::size_t j = i + 1; j < directions.size() && directions[j].azimuth - directions[i].azimuth <= max_az; ++j)
+            if (std::abs(directions[j].elevation - directions[i].elevation) <= max_el) {
+                const int a = find(parent, static_cast<int>(i)), b = find(parent, static_cast<int>(j));
+                if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+            }
+    // Pieces in the order of their first point in the cluster, points in the cluster's order.
+    std::vector<std::size_t> root_of(cluster.points.size());
+    for (std::size_t k = 0; k < directions.size(); ++k) root_of[directions[k].index] = static_cast<std::size_t>(find(parent, static_cast<int>(k)));
+    std::vector<Cluster> pieces;
+    std::vector<long> piece_of(directions.size(), -1);
+    for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        long& piece = piece_of[root_of[i]];
+        if (piece < 0) {
+            piece = static_cast<long>(pieces.size());
+            pieces.emplace_back();
+        }
+        pieces[static_cast<std::size_t>(piece)].points.push_back(cluster.points[i]);
+    }
+    for (Cluster& c : pieces) c.box = bounding_box(c.points);
+    return pieces;
 }
 
 std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double tolerance_m, std::size_t min_points) {

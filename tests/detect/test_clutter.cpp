@@ -2,6 +2,7 @@
 // range across neighbouring beams; a cloud's backscatter climbs in range from beam to beam.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -36,6 +37,25 @@ Points backscatter(double range, double az, double el, int n, double step) {
 Points joined(Points a, const Points& b) {
     a.insert(a.end(), b.begin(), b.end());
     return a;
+}
+
+/// The cued tracker (V-RBNN) over `frames` frames of a drone closing at 25 m/s from 660 m, with
+/// `clutter(range)` joined to it in frames [first, last): each frame must detect the drone's own box.
+template <typename Clutter>
+void check_followed(int frames, int first, int last, const Clutter& clutter) {
+    DetectorConfig config;
+    config.lambda = 180.0;
+    TargetTracker tracker(config, kPaperSensor, {});
+    for (int k = 0; k < frames; ++k) {
+        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
+        const Points target = drone(range, 0.0, 0.0);
+        const Points frame = k >= first && k < last ? joined(target, clutter(range)) : target;
+        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
+        INFO("frame " << k);
+        REQUIRE(d.found);
+        CHECK_FALSE(d.predicted);
+        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
+    }
 }
 
 /// A still cloud's clumps beside the drone: four, 1.5-6 m from it, each 8 beams climbing 0.12 m
@@ -77,21 +97,9 @@ TEST_CASE("clutter: a coherent core frees a drone from the cloud returns chained
 }
 
 TEST_CASE("clutter: the cued tracker keeps a drone flying into a cloud whose returns chain to it", "[detect][clutter]") {
-    DetectorConfig config;
-    config.lambda = 180.0;
-    TargetTracker tracker(config, kPaperSensor, {});
-    for (int k = 0; k < 12; ++k) {
-        const double t = 0.05 * k, range = 660.0 - 25.0 * t;  // 25 m/s towards the sensor
-        const Points target = drone(range, 0.0, 0.0);
-        // Frames 4-7: the cloud's returns climb from the drone's last beam 2.9 m behind it; with
-        // them the cluster is too large to be the target, and the drone would be lost.
-        const Points frame = k >= 4 && k < 8 ? joined(target, backscatter(range + 0.25, 8 * kPitchAz, 0.0, 30, 0.09)) : target;
-        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
-        INFO("frame " << k);
-        REQUIRE(d.found);
-        CHECK_FALSE(d.predicted);
-        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
-    }
+    // Frames 4-7: the cloud's returns climb from the drone's last beam 2.9 m behind it; with them
+    // the cluster is too large to be the target, and the drone would be lost.
+    check_followed(12, 4, 8, [](double range) { return backscatter(range + 0.25, 8 * kPitchAz, 0.0, 30, 0.09); });
 }
 
 TEST_CASE("clutter: tracking every target, a cloud's clumps beside a drone make no track", "[detect][clutter][multi_target]") {
@@ -241,20 +249,98 @@ TEST_CASE("clutter: a return whose beam holds another near it and whose neighbou
 }
 
 TEST_CASE("clutter: the cued tracker keeps a drone inside a volume whose returns agree in range from line to line", "[detect][clutter]") {
+    // Frames 4-7: the volume about the drone chains to it (0.30 m from its returns, under the
+    // clustering radius), and its slab 0.3 m beyond it is the cluster's core: too wide to be the
+    // target, and the drone would be lost.
+    check_followed(12, 4, 8, [](double range) { return volume_about(range, 8); });
+}
+
+TEST_CASE("clutter: a sparse line under the fullest line's run, weaker than its median echo, is the target's", "[detect][clutter]") {
+    // The drone midway between lines at 1.9 km: 9 returns on one line (echoes 200-1,200), 2 on
+    // the other, seen through the beam's fringe (200), under the first line's run.
+    Points target;
+    std::vector<float> echoes;
+    for (int column = 0; column < 9; ++column) {
+        target.push_back(along(1876.3, column * kPitchAz, 0.0));
+        echoes.push_back(static_cast<float>(1200.0 - 250.0 * std::abs(column - 4)));
+    }
+    for (int column : {2, 6}) {
+        target.push_back(along(1876.3, column * kPitchAz, kPitchEl));
+        echoes.push_back(200.0f);
+    }
+    const Cluster c{target, bounding_box(target)};
+    CHECK(without_sparse_lines(c, kPitchEl, 0.25, echoes).points == target);
+    // Without intensities, or with the sparse line's echoes as strong as the median (a cloud's
+    // layer is brighter than a small target), or reaching beyond the run, the line is dropped.
+    const Points lower(target.begin(), target.begin() + 9);
+    CHECK(without_sparse_lines(c, kPitchEl, 0.25).points == lower);
+    std::vector<float> bright = echoes;
+    bright[9] = 700.0f;
+    CHECK(without_sparse_lines(c, kPitchEl, 0.25, bright).points == lower);
+    Points beyond = target;
+    beyond[10] = along(1876.3, 9 * kPitchAz, kPitchEl);
+    CHECK(without_sparse_lines(Cluster{beyond, bounding_box(beyond)}, kPitchEl, 0.25, echoes).points == lower);
+    // A bright return of a cloud on the fullest line does not move its median.
+    Points with_cloud = target;
+    std::vector<float> with_cloud_echoes = bright;
+    with_cloud.push_back(along(1876.3, 8 * kPitchAz, 0.0));
+    with_cloud_echoes.push_back(1.0e5f);
+    CHECK(without_sparse_lines(Cluster{with_cloud, bounding_box(with_cloud)}, kPitchEl, 0.25, with_cloud_echoes).points.size() == 10);
+}
+
+namespace {
+
+/// A cloud's layer at `range`, one return every 4th beam of lines -3..4, columns -40..-4 and
+/// 12..48: the drone's beams (columns 0-7 of lines 0 and 1) 4 or 5 beams from it. Its returns
+/// chain along their lines and to the drone within the clustering radius, but no beam's
+/// neighbour (within two beams on its line or the next) is one of them.
+Points layer_about(double range) {
+    Points p;
+    for (int row = -3; row <= 4; ++row)
+        for (int column = -40; column <= 48; column += 4)
+            if (column <= -4 || column >= 12) p.push_back(along(range + 0.03 * (column & 4 ? 1 : -1), column * kPitchAz, row * kPitchEl));
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("clutter: a cloud's layer at a drone's range falls away from it beam to beam", "[detect][clutter]") {
+    const Points target = drone(650.0, 0.0, 0.0);
+    const Points frame = joined(target, layer_about(650.0));
+    const double radius = vrbnn_radius_m(180.0, kPaperSensor, 650.0, 0.01);
+    const std::vector<Cluster> clusters = coherent_cores(rbnn(frame, radius), 0.1, 4);
+    REQUIRE(clusters.size() == 1);  // one core, too wide to be the target
+    REQUIRE_FALSE(small_enough(clusters[0], 1.0, 1.5 * 0.62e-3));
+    const std::vector<Cluster> pieces = beam_connected(clusters[0], kPitchAz, kPitchEl);
+    const auto drone_piece = std::find_if(pieces.begin(), pieces.end(), [&](const Cluster& c) { return c.points.front() == target.front(); });
+    REQUIRE(drone_piece != pieces.end());
+    CHECK(drone_piece->points == target);
+    // A far drone's returns missing every other beam stay one piece.
+    Points every_other;
+    for (int row = 0; row < 2; ++row)
+        for (int column = row; column < 16; column += 2) every_other.push_back(along(1900.0, column * kPitchAz, row * kPitchEl));
+    CHECK(beam_connected(Cluster{every_other, bounding_box(every_other)}, kPitchAz, kPitchEl).size() == 1);
+}
+
+TEST_CASE("clutter: the cued tracker follows a drone across a cloud's layer at its range", "[detect][clutter]") {
+    // Frames 4-6: the layer chains to the drone into one core too wide to be the target.
+    check_followed(10, 4, 7, layer_about);
+}
+
+TEST_CASE("clutter: before a history, the cued candidate's range sets the clustering radius", "[detect][clutter]") {
     DetectorConfig config;
     config.lambda = 180.0;
+    // A drone at 900 m on two lines 0.39 m apart, and a cloud's wall at 650 m holding nine in ten
+    // of the returns: the radius at the 90th-percentile range, 0.35 m, splits the drone's lines.
+    const Points target = drone(900.0, 0.0, 0.0, 16);
+    Points frame = target;
+    for (int row = -8; row < -2; ++row)
+        for (int column = -60; column < -10; ++column) frame.push_back(along(650.0, column * kPitchAz, row * kPitchEl));
+    REQUIRE(vrbnn_radius_m(180.0, kPaperSensor, acquisition_range_m(frame), 0.01) < 900.0 * kPitchEl);
     TargetTracker tracker(config, kPaperSensor, {});
-    for (int k = 0; k < 12; ++k) {
-        const double t = 0.05 * k, range = 660.0 - 25.0 * t;
-        const Points target = drone(range, 0.0, 0.0);
-        // Frames 4-7: the volume about the drone chains to it (0.30 m from its returns, under the
-        // clustering radius), and its slab 0.3 m beyond it is the cluster's core: too wide to be
-        // the target, and the drone would be lost.
-        const Points frame = k >= 4 && k < 8 ? joined(target, volume_about(range, 8)) : target;
-        const Detection d = tracker.process(static_cast<std::uint64_t>(k), t, frame);
-        INFO("frame " << k);
-        REQUIRE(d.found);
-        CHECK_FALSE(d.predicted);
-        CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
-    }
+    const Eigen::Vector3d cue = bounding_box(target).centre.normalized();
+    const Detection d = tracker.process(0, 0.0, frame, cue);
+    REQUIRE(d.found);
+    CHECK(d.points == target.size());
+    CHECK((d.box.centre - bounding_box(target).centre).norm() < 1e-6);
 }

@@ -68,8 +68,19 @@ Points without_volume_echoes(const Points& points, double pitch_rad, double tole
 /// with it in range and join it from another line come one or two a line, and would move its box
 /// by half a line pitch. Lines are told apart by elevation (sensor frame): a gap of more than half
 /// `line_pitch_rad` starts a new one. Keeps the lines holding at least `min_fraction` of the
-/// fullest line's returns.
-Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction);
+/// fullest line's returns and, given one `intensity` per point, a sparser line whose returns lie
+/// within the fullest line's span of azimuth and whose strongest echo is weaker than that line's
+/// median echo: a target's line further from it sees it through the beam's fringe (a few beams
+/// above the threshold, under the fullest line's run, as weak as that line's edges), as at 1.9 km
+/// where the drone lies midway and one line holds 2 returns to the other's 9; a cloud's return
+/// comes from anywhere within the clustering radius, with the cloud's own strength (dataset 3's
+/// front layer echoes 4 times the drone's peak, 10 times its median).
+Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction,
+                             const std::vector<float>& intensity = {});
+
+/// Whether a cluster's box diagonal is within `max_diagonal_m` plus `beam_spread_rad` times its
+/// range (plausible_targets' size test).
+bool small_enough(const Cluster& cluster, double max_diagonal_m, double beam_spread_rad);
 
 /// Drops clusters whose box diagonal exceeds `max_diagonal_m` (Algorithm 1: 1 m) plus
 /// `beam_spread_rad` times their range, and those with fewer than `min_points`. Returns lie on
@@ -99,5 +110,13 @@ std::vector<Cluster> standing_clear(std::vector<Cluster> clusters, const Points&
 /// where it holds `min_points` or more. A tracker that knows where its target should be takes the
 /// core nearest that place: a clump of the volume, or the target freed of it.
 std::vector<Cluster> coherent_cores(const std::vector<Cluster>& clusters, double tolerance_m, std::size_t min_points);
+
+/// A cluster cut into the pieces its returns link beam to beam: returns on the same or the next
+/// scan line (elevations within 1.5 `el_pitch_rad`) and at most two beams apart along it (azimuths
+/// within 2.5 `az_pitch_rad`: a far target's returns miss every other beam) are linked. A small
+/// target is seen by a run of neighbouring beams on each line its footprint reaches; a cloud's
+/// layer that agrees with it in range, chained to it by a radius of more than a line pitch, lies
+/// scattered a few beams apart and falls away from it.
+std::vector<Cluster> beam_connected(const Cluster& cluster, double az_pitch_rad, double el_pitch_rad);
 
 }  // namespace ladarsim::detect
