@@ -66,6 +66,67 @@ Eigen::Vector3f facing_across(const Eigen::Vector3f& towards, const Eigen::Vecto
 // scanner that recorded it is an artefact of the sampling (such a surface would hardly return).
 constexpr float kScanLineCos = 0.1f;
 
+// Each point's disc: its normal from the plane of its nearest neighbours, facing where the map was
+// recorded from, and its radius from the nearest four.
+void estimate_discs(const pcl::PointCloud<pcl::PointXYZ>& cloud, int normal_neighbours, const std::optional<Eigen::Vector3d>& scanner,
+                    BackgroundMap& map, BackgroundLoadReport& rep) {
+    const std::size_t n = cloud.size();
+    // FLANN's k-d tree as PCL's KdTreeFLANN builds and searches it (the same neighbours), queried
+    // a block of points at a time: PCL's one query a call opens an OpenMP region each time, which
+    // cost as much as the search, and blocks spread over the caller's threads.
+    static_assert(sizeof(pcl::PointXYZ) == 4 * sizeof(float), "PointXYZ is x y z and a pad");
+    // FLANN's matrices take float* but only read the points.
+    float* xyz = const_cast<float*>(&cloud[0].x);
+    flann::Index<flann::L2_Simple<float>> tree(flann::Matrix<float>(xyz, n, 3, sizeof(pcl::PointXYZ)),
+                                               flann::KDTreeSingleIndexParams(15));
+    tree.buildIndex();
+
+    // The search returns the point itself first, then its neighbours by distance.
+    const int k_normal = std::clamp(normal_neighbours, 3, static_cast<int>(n));
+    const int k_search = std::max(k_normal, 5);
+    const auto k = static_cast<std::size_t>(k_search);
+    map.normals.resize(n);
+    map.radii_m.resize(n);
+    enum class NormalFrom : std::uint8_t { plane, degenerate, scan_line };
+    std::vector<NormalFrom> normal_from(n, NormalFrom::plane);
+    constexpr std::size_t kBlock = 4096;
+    tbb::parallel_for(std::size_t{0}, (n + kBlock - 1) / kBlock, [&](std::size_t block) {
+        const std::size_t first = block * kBlock, count = std::min(kBlock, n - first);
+        std::vector<int> found(count * k);
+        std::vector<float> squared(count * k);
+        flann::Matrix<int> indices(found.data(), count, k);
+        flann::Matrix<float> squared_distances(squared.data(), count, k);
+        flann::SearchParams search(-1, 0.0f, true);
+        search.cores = 1;
+        tree.knnSearch(flann::Matrix<float>(xyz + 4 * first, count, 3, sizeof(pcl::PointXYZ)), indices, squared_distances,
+                       k, search);
+        for (std::size_t j = 0; j < count; ++j) {
+            const std::size_t i = first + j;
+            const int* neighbours = indices[j];
+            const float* d2 = squared_distances[j];
+            const pcl::Indices plane_points(neighbours, neighbours + k_normal);
+            const NeighbourhoodPlane plane = fit_plane(cloud, plane_points);
+            // Discs face where the map was recorded from: up for an airborne survey, else its scanner.
+            const Eigen::Vector3f towards =
+                scanner ? Eigen::Vector3f((*scanner - map.points_world[i]).normalized().cast<float>())
+                    : Eigen::Vector3f::UnitZ();
+            if (!plane.normal) {
+                map.normals[i] = scanner ? facing_across(towards, plane.axis) : towards;
+                normal_from[i] = NormalFrom::degenerate;
+            } else if (scanner && std::abs(plane.normal->dot(towards)) < kScanLineCos) {
+                map.normals[i] = towards;
+                normal_from[i] = NormalFrom::scan_line;
+            } else {
+                map.normals[i] = plane.normal->dot(towards) < 0.0f ? Eigen::Vector3f(-*plane.normal) : *plane.normal;
+            }
+            const double sum_d2 = static_cast<double>(d2[1]) + d2[2] + d2[3] + d2[4];
+            map.radii_m[i] = static_cast<float>(std::sqrt(sum_d2 / 8.0));
+        }
+    });
+    rep.degenerate_normals += static_cast<std::size_t>(std::count(normal_from.begin(), normal_from.end(), NormalFrom::degenerate));
+    rep.scan_line_normals += static_cast<std::size_t>(std::count(normal_from.begin(), normal_from.end(), NormalFrom::scan_line));
+}
+
 }  // namespace
 
 BackgroundMap load_background_map(const std::filesystem::path& file, const BackgroundOptions& options,
@@ -138,58 +199,7 @@ BackgroundMap load_background_map(const std::filesystem::path& file, const Backg
         const Eigen::Vector3f q = (map.points_world[i] - centre).cast<float>();
         (*cloud)[i] = pcl::PointXYZ(q.x(), q.y(), q.z());
     }
-    // FLANN's k-d tree as PCL's KdTreeFLANN builds and searches it (the same neighbours), queried
-    // a block of points at a time: PCL's one query a call opens an OpenMP region each time, which
-    // cost as much as the search, and blocks spread over the caller's threads.
-    static_assert(sizeof(pcl::PointXYZ) == 4 * sizeof(float), "PointXYZ is x y z and a pad");
-    flann::Index<flann::L2_Simple<float>> tree(flann::Matrix<float>(&(*cloud)[0].x, n, 3, sizeof(pcl::PointXYZ)),
-                                               flann::KDTreeSingleIndexParams(15));
-    tree.buildIndex();
-
-    // The search returns the point itself first, then its neighbours by distance.
-    const int k_normal = std::clamp(options.normal_neighbours, 3, static_cast<int>(n));
-    const int k_search = std::max(k_normal, 5);
-    const auto k = static_cast<std::size_t>(k_search);
-    map.normals.resize(n);
-    map.radii_m.resize(n);
-    enum class NormalFrom : std::uint8_t { plane, degenerate, scan_line };
-    std::vector<NormalFrom> normal_from(n, NormalFrom::plane);
-    constexpr std::size_t kBlock = 4096;
-    tbb::parallel_for(std::size_t{0}, (n + kBlock - 1) / kBlock, [&](std::size_t block) {
-        const std::size_t first = block * kBlock, count = std::min(kBlock, n - first);
-        std::vector<int> found(count * k);
-        std::vector<float> squared(count * k);
-        flann::Matrix<int> indices(found.data(), count, k);
-        flann::Matrix<float> squared_distances(squared.data(), count, k);
-        flann::SearchParams search(-1, 0.0f, true);
-        search.cores = 1;
-        tree.knnSearch(flann::Matrix<float>(&(*cloud)[first].x, count, 3, sizeof(pcl::PointXYZ)), indices, squared_distances,
-                       k, search);
-        for (std::size_t j = 0; j < count; ++j) {
-            const std::size_t i = first + j;
-            const int* neighbours = indices[j];
-            const float* d2 = squared_distances[j];
-            const pcl::Indices plane_points(neighbours, neighbours + k_normal);
-            const NeighbourhoodPlane plane = fit_plane(*cloud, plane_points);
-            // Discs face where the map was recorded from: up for an airborne survey, else its scanner.
-            const Eigen::Vector3f towards =
-                scanner ? Eigen::Vector3f((*scanner - map.points_world[i]).normalized().cast<float>())
-                    : Eigen::Vector3f::UnitZ();
-            if (!plane.normal) {
-                map.normals[i] = scanner ? facing_across(towards, plane.axis) : towards;
-                normal_from[i] = NormalFrom::degenerate;
-            } else if (scanner && std::abs(plane.normal->dot(towards)) < kScanLineCos) {
-                map.normals[i] = towards;
-                normal_from[i] = NormalFrom::scan_line;
-            } else {
-                map.normals[i] = plane.normal->dot(towards) < 0.0f ? Eigen::Vector3f(-*plane.normal) : *plane.normal;
-            }
-            const double sum_d2 = static_cast<double>(d2[1]) + d2[2] + d2[3] + d2[4];
-            map.radii_m[i] = static_cast<float>(std::sqrt(sum_d2 / 8.0));
-        }
-    });
-    rep.degenerate_normals += static_cast<std::size_t>(std::count(normal_from.begin(), normal_from.end(), NormalFrom::degenerate));
-    rep.scan_line_normals += static_cast<std::size_t>(std::count(normal_from.begin(), normal_from.end(), NormalFrom::scan_line));
+    estimate_discs(*cloud, options.normal_neighbours, scanner, map, rep);
 
     std::vector<float> sorted = map.radii_m;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
