@@ -38,19 +38,7 @@ BeamCone::BeamCone(const FootprintContext& context, const std::vector<scene::Sce
             });
             shape.part.push_back(in == parts.end() ? -1 : static_cast<std::int32_t>(in - parts.begin()));
         }
-        if (scene::animates(*object.model, object.animation)) {
-            shape.motions.emplace(*object.model, object.animation);
-            shape.part_boxes.assign(parts.size() + 1, Eigen::AlignedBox3d());
-            std::vector<bool> in_part(mesh.triangles.size(), false);
-            for (std::size_t p = 0; p < parts.size(); ++p)
-                for (std::uint32_t t = parts[p].first_triangle; t < parts[p].first_triangle + parts[p].triangle_count; ++t) {
-                    in_part[t] = true;
-                    for (const std::uint32_t v : mesh.triangles[t]) shape.part_boxes[p + 1].extend(mesh.positions[v].cast<double>());
-                }
-            for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-                if (!in_part[t])
-                    for (const std::uint32_t v : mesh.triangles[t]) shape.part_boxes[0].extend(mesh.positions[v].cast<double>());
-        }
+        if (scene::animates(*object.model, object.animation)) shape.motions.emplace(*object.model, object.animation);
         for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);
     }
 }
@@ -121,31 +109,12 @@ std::optional<FootprintRect> BeamCone::outline_of(const raytrace::ObjectBounds& 
     const double r_max = footprint.max_offset_rad();
     const Eigen::Vector3d& origin = aim.origin_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
-    // The outline of the object's box as the beam sees it: its eight corners' offsets. An animated
-    // object's parts are boxed where its animation has them at the beam's time (its sub-rays'
-    // time): the box over the whole animation is wider (a bird's wingbeat makes it 5 times the
-    // volume), and the map behind it went to the sub-rays instead of the map's own integration.
-    thread_local std::vector<Eigen::Vector3d> corners;
-    corners.clear();
-    const auto shape = target_shapes_.find(b.object_id);
-    if (shape != target_shapes_.end() && shape->second.motions) {
-        thread_local std::vector<Eigen::Affine3d> motions;
-        shape->second.motions->at(aim.time_s, motions);
-        for (std::size_t p = 0; p < shape->second.part_boxes.size(); ++p) {
-            const Eigen::AlignedBox3d& box = shape->second.part_boxes[p];
-            if (box.isEmpty()) continue;
-            for (int k = 0; k < 8; ++k) {
-                const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
-                corners.push_back(p == 0 ? corner : Eigen::Vector3d(motions[p - 1] * corner));
-            }
-        }
-    } else {
-        for (int k = 0; k < 8; ++k) corners.push_back(b.box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)));
-    }
+    // The outline of the object's box as the beam sees it: its eight corners' offsets.
     FootprintRect outline{r_max, -r_max, r_max, -r_max};
     bool in_front = !inside;
-    for (std::size_t k = 0; k < corners.size() && in_front; ++k) {
-        const Eigen::Vector3d c = beam_from_world * (b.world_from_model * corners[k].homogeneous() - origin);
+    for (int k = 0; k < 8 && in_front; ++k) {
+        const Eigen::Vector3d corner = b.box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
+        const Eigen::Vector3d c = beam_from_world * (b.world_from_model * corner.homogeneous() - origin);
         in_front = c.x() > 0.0;
         const Eigen::Vector2d o = context_.shape.offset_of(c);
         outline = {std::min(outline.x_lo, o.x()), std::max(outline.x_hi, o.x()), std::min(outline.y_lo, o.y()),
