@@ -25,7 +25,6 @@ constexpr int kMostSamples = 4097;
 
 double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 
-
 }  // namespace
 
 Matrix34 relative_from_model(const scene::SceneObject& object, const Eigen::Vector3d& origin_world, double time_s) {
@@ -39,7 +38,6 @@ AnimatedObject::AnimatedObject(const scene::SceneObject& object, const Eigen::Ve
     : object_(&object), motions_(*object.model, object.animation), origin_world_(origin_world) {}
 
 void AnimatedObject::pose(double time_s, Posed& out) const {
-    out.time_s = time_s;
     out.relative_from_model = relative_from_model(*object_, origin_world_, time_s);
     motions_.at(time_s, out.motions);
 }
@@ -54,20 +52,24 @@ Matrix34 AnimatedObject::placement(int part, double time_s) const {
     return part < 0 ? m : Matrix34(m * motions_.at(static_cast<std::size_t>(part), time_s).matrix());
 }
 
-void AnimatedObject::set_window(double begin_s, double length_s, const std::vector<AnimatedPart*>& parts) {
+AnimatedPart& AnimatedObject::add_part(int part, RTCScene bvh, const std::vector<std::uint32_t>& triangles) {
+    return parts_.emplace_back(*this, part, bvh, object_->model->mesh, triangles);
+}
+
+void AnimatedObject::set_window(double begin_s, double length_s) {
     window_begin_s_ = begin_s;
     window_length_s_ = length_s;
     // Evenly spaced times, twice as many until every part turns little enough between them; each
     // doubling keeps the times it had.
     std::vector<Posed> posed(kFirstSamples);
     for (int k = 0; k < kFirstSamples; ++k) pose(begin_s + length_s * k / (kFirstSamples - 1), posed[static_cast<std::size_t>(k)]);
-    std::vector<std::vector<Matrix34>> placed(parts.size());
+    std::vector<std::vector<Matrix34>> placed(parts_.size());
     for (;;) {
         bool fine = true;
-        for (std::size_t p = 0; p < parts.size(); ++p) {
+        for (std::size_t p = 0; p < parts_.size(); ++p) {
             placed[p].clear();
-            for (const Posed& s : posed) placed[p].push_back(part_of(s, parts[p]->part_));
-            fine = fine && parts[p]->largest_turn_rad(placed[p]) <= kSampleTurnRad;
+            for (const Posed& s : posed) placed[p].push_back(part_of(s, parts_[p].part_));
+            fine = fine && parts_[p].largest_turn_rad(placed[p]) <= kSampleTurnRad;
         }
         if (fine || static_cast<int>(posed.size()) >= kMostSamples) break;
         const std::size_t n = 2 * posed.size() - 1;
@@ -78,7 +80,7 @@ void AnimatedObject::set_window(double begin_s, double length_s, const std::vect
         }
         posed = std::move(finer);
     }
-    for (std::size_t p = 0; p < parts.size(); ++p) parts[p]->bound(placed[p]);
+    for (std::size_t p = 0; p < parts_.size(); ++p) parts_[p].bound(placed[p]);
 }
 
 AnimatedPart::AnimatedPart(const AnimatedObject& object, int part, RTCScene bvh, const scene::TriangleMesh& mesh,

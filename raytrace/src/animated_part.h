@@ -7,8 +7,8 @@
 // window; a ray entering it is carried into the part's model frame at the ray's own time, by the
 // animation itself rather than an interpolation of it, and traced against the part's BVH.
 #include <cstdint>
+#include <deque>
 #include <limits>
-#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -38,13 +38,17 @@ public:
     /// The time of Embree's `u` (0 to 1) in the current window.
     double time_at(float u) const { return window_begin_s_ + window_length_s_ * static_cast<double>(u); }
 
-    /// Sets the window [begin_s, begin_s + length_s] and bounds each of `parts` (this object's)
-    /// over it; commit their geometries after.
-    void set_window(double begin_s, double length_s, const std::vector<AnimatedPart*>& parts);
+    /// A part of this object: `part` an index into the model's animation parts, or -1 for its
+    /// triangles in none; `bvh` those triangles in model coordinates, listed by `triangles` (the
+    /// model's indices).
+    AnimatedPart& add_part(int part, RTCScene bvh, const std::vector<std::uint32_t>& triangles);
+
+    /// Sets the window [begin_s, begin_s + length_s] and bounds each part over it; commit their
+    /// geometries after.
+    void set_window(double begin_s, double length_s);
 
 private:
     struct Posed {
-        double time_s = std::numeric_limits<double>::quiet_NaN();  // none yet
         Matrix34 relative_from_model;
         std::vector<Eigen::Affine3d> motions;
     };
@@ -55,12 +59,12 @@ private:
     scene::PartMotions motions_;
     Eigen::Vector3d origin_world_;
     double window_begin_s_ = 0.0, window_length_s_ = 0.0;
+    std::deque<AnimatedPart> parts_;  // a deque: Embree and the top scene's entries point at them
 };
 
 class AnimatedPart {
 public:
-    /// `part`: an index into the model's animation parts, or -1 for its triangles in none; `bvh`:
-    /// those triangles in model coordinates, listed by `triangles` (the model's indices).
+    /// Made by AnimatedObject::add_part.
     AnimatedPart(const AnimatedObject& object, int part, RTCScene bvh, const scene::TriangleMesh& mesh,
                  const std::vector<std::uint32_t>& triangles);
     AnimatedPart(const AnimatedPart&) = delete;

@@ -68,12 +68,10 @@ struct TracedScene::Impl {
     EmbreeScene top;
     std::optional<VolumeBoundaries> volumes;  // fog and cloud, traced only by volumes_along
     std::deque<ModelBvh> models;  // a deque: instances point at their BVH's triangle list
-    // Each animated object with its parts (Embree and the top geometries point at them) and their
-    // geometry ids in the top scene.
+    // Each animated object (its parts: the top geometries point at them) and its parts' geometry
+    // ids in the top scene.
     struct Animated {
         std::unique_ptr<AnimatedObject> object;
-        std::deque<AnimatedPart> parts;
-        std::vector<AnimatedPart*> part_list;
         std::vector<unsigned> top_ids;
     };
     std::deque<Animated> animated;
@@ -269,16 +267,7 @@ struct TracedScene::Impl {
         auto [it, inserted] = model_index.emplace(&model, models.size());
         if (inserted) {
             // models[first + 0]: the triangles in no part; models[first + 1 + p]: part p.
-            std::vector<bool> in_part(model.mesh.triangles.size(), false);
-            std::vector<std::vector<std::uint32_t>> lists(parts.size() + 1);
-            for (std::size_t p = 0; p < parts.size(); ++p)
-                for (std::uint32_t t = parts[p].first_triangle; t < parts[p].first_triangle + parts[p].triangle_count; ++t) {
-                    lists[p + 1].push_back(t);
-                    in_part[t] = true;
-                }
-            for (std::uint32_t t = 0; t < in_part.size(); ++t)
-                if (!in_part[t]) lists[0].push_back(t);
-            for (auto& list : lists) {
+            for (auto& list : scene::triangles_by_part(model)) {
                 // An empty list stays empty: no BVH, and never instanced.
                 EmbreeScene child = list.empty() ? EmbreeScene{} : model_bvh(model, list);
                 models.push_back(ModelBvh{std::move(child), &model, std::move(list)});
@@ -289,8 +278,7 @@ struct TracedScene::Impl {
         for (std::size_t k = 0; k <= parts.size(); ++k) {
             const ModelBvh& bvh = models[it->second + k];
             if (bvh.triangles.empty()) continue;
-            AnimatedPart& part = a.parts.emplace_back(*a.object, static_cast<int>(k) - 1, bvh.scene.get(), model.mesh, bvh.triangles);
-            a.part_list.push_back(&part);
+            const AnimatedPart& part = a.object->add_part(static_cast<int>(k) - 1, bvh.scene.get(), bvh.triangles);
             a.top_ids.push_back(static_cast<unsigned>(geometries.size()));
             attach(TopGeometry{GeometryKind::moving_instance, part.make_geometry(device.get()), &object, nullptr, &bvh.triangles,
                                &part});
@@ -357,7 +345,7 @@ struct TracedScene::Impl {
             rtcCommitGeometry(g);
         }
         for (Animated& a : animated) {
-            a.object->set_window(begin_s, window_length_s, a.part_list);
+            a.object->set_window(begin_s, window_length_s);
             for (const unsigned id : a.top_ids) rtcCommitGeometry(geometries[id].geometry.get());
         }
         rtcCommitScene(top.get());
@@ -452,10 +440,11 @@ struct TracedScene::Impl {
         } else {
             const scene::SceneObject& object = *entry.object;
             const scene::Model& model = *object.model;
-            const auto& tri = model.mesh.triangles[entry.triangles ? (*entry.triangles)[prim] : prim];
+            const std::uint32_t triangle = entry.triangles ? (*entry.triangles)[prim] : prim;
+            const auto& tri = model.mesh.triangles[triangle];
             hit.object_id = object.id;
             hit.object_class = object.object_class;
-            hit.material = model.mesh.triangle_material[entry.triangles ? (*entry.triangles)[prim] : prim];
+            hit.material = model.mesh.triangle_material[triangle];
             hit.reflectance = static_cast<float>(model.materials[hit.material].reflectance);
             Eigen::Vector3d v[3];
             if (entry.kind == GeometryKind::static_mesh) {

@@ -151,6 +151,22 @@ std::vector<Eigen::Affine3d> rest_model_from_node(const Animation& animation) {
     return Poser().pose(animation, AnimationChoice{}, 0.0, false);
 }
 
+std::vector<std::vector<std::uint32_t>> triangles_by_part(const Model& model) {
+    const std::size_t parts = model.animation ? model.animation->parts.size() : 0;
+    std::vector<std::vector<std::uint32_t>> lists(parts + 1);
+    std::vector<bool> in_part(model.mesh.triangles.size(), false);
+    for (std::size_t p = 0; p < parts; ++p) {
+        const AnimationPart& part = model.animation->parts[p];
+        for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
+            lists[p + 1].push_back(t);
+            in_part[t] = true;
+        }
+    }
+    for (std::uint32_t t = 0; t < in_part.size(); ++t)
+        if (!in_part[t]) lists[0].push_back(t);
+    return lists;
+}
+
 bool animates(const Model& model, const AnimationChoice& choice) {
     return model.animation && !model.animation->parts.empty() && plays_any(*model.animation, choice);
 }
@@ -213,18 +229,13 @@ Eigen::AlignedBox3d animated_bounds(const Model& model, const AnimationChoice& c
     }
     const Animation& animation = *model.animation;
     // Each part's rest box; triangles in no part stay where they are.
+    const std::vector<std::vector<std::uint32_t>> lists = triangles_by_part(model);
     std::vector<Eigen::AlignedBox3d> part_box(animation.parts.size());
-    std::vector<bool> in_part(mesh.triangles.size(), false);
-    for (std::size_t p = 0; p < animation.parts.size(); ++p) {
-        const AnimationPart& part = animation.parts[p];
-        for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
-            in_part[t] = true;
+    for (std::size_t p = 0; p < animation.parts.size(); ++p)
+        for (const std::uint32_t t : lists[p + 1])
             for (std::uint32_t v : mesh.triangles[t]) part_box[p].extend(mesh.positions[v].cast<double>());
-        }
-    }
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-        if (!in_part[t])
-            for (std::uint32_t v : mesh.triangles[t]) box.extend(mesh.positions[v].cast<double>());
+    for (const std::uint32_t t : lists[0])
+        for (std::uint32_t v : mesh.triangles[t]) box.extend(mesh.positions[v].cast<double>());
 
     // Samples over the longest chosen loop, at least 16 per key interval of its busiest channel.
     double duration = 0.0;

@@ -120,13 +120,12 @@ std::vector<double> gltf_matrix(const Eigen::Matrix4d& model_axes) {
 void add_animated_scene(tinygltf::Model& g, const Model& model) {
     const Animation& animation = *model.animation;
     const std::vector<Eigen::Affine3d> rest = rest_model_from_node(animation);
+    const std::vector<std::vector<std::uint32_t>> by_part = triangles_by_part(model);
     std::vector<std::vector<std::uint32_t>> node_triangles(animation.nodes.size());
-    std::vector<bool> in_part(model.mesh.triangles.size(), false);
-    for (const AnimationPart& part : animation.parts)
-        for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
-            node_triangles[part.node].push_back(t);
-            in_part[t] = true;
-        }
+    for (std::size_t p = 0; p < animation.parts.size(); ++p) {
+        std::vector<std::uint32_t>& list = node_triangles[animation.parts[p].node];
+        list.insert(list.end(), by_part[p + 1].begin(), by_part[p + 1].end());
+    }
     for (std::size_t i = 0; i < animation.nodes.size(); ++i) {
         const AnimationNode& n = animation.nodes[i];
         tinygltf::Node node;
@@ -158,9 +157,7 @@ void add_animated_scene(tinygltf::Model& g, const Model& model) {
         g.nodes.push_back(holder);
         g.nodes[i].children.push_back(static_cast<int>(g.nodes.size()) - 1);
     }
-    std::vector<std::uint32_t> still;
-    for (std::uint32_t t = 0; t < in_part.size(); ++t)
-        if (!in_part[t]) still.push_back(t);
+    const std::vector<std::uint32_t>& still = by_part[0];
     if (!still.empty()) {
         tinygltf::Node node;
         node.name = model.source;

@@ -28,15 +28,14 @@ BeamCone::BeamCone(const FootprintContext& context, const std::vector<scene::Sce
         const scene::TriangleMesh& mesh = object.model->mesh;
         const std::size_t stride = (mesh.triangles.size() + kSeedCandidates - 1) / kSeedCandidates;
         TargetSeeds& shape = target_shapes_[object.id];
-        static const std::vector<scene::AnimationPart> kNoParts;
-        const auto& parts = object.model->animation ? object.model->animation->parts : kNoParts;
+        std::vector<std::int32_t> part_of(mesh.triangles.size(), -1);
+        const std::vector<std::vector<std::uint32_t>> by_part = scene::triangles_by_part(*object.model);
+        for (std::size_t p = 1; p < by_part.size(); ++p)
+            for (const std::uint32_t t : by_part[p]) part_of[t] = static_cast<std::int32_t>(p) - 1;
         for (std::size_t t = 0; t < mesh.triangles.size(); t += stride) {
             const auto& tri = mesh.triangles[t];
             shape.points.push_back((mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).cast<double>() / 3.0);
-            const auto in = std::find_if(parts.begin(), parts.end(), [t](const scene::AnimationPart& p) {
-                return t >= p.first_triangle && t < std::size_t{p.first_triangle} + p.triangle_count;
-            });
-            shape.part.push_back(in == parts.end() ? -1 : static_cast<std::int32_t>(in - parts.begin()));
+            shape.part.push_back(part_of[t]);
         }
         if (scene::animates(*object.model, object.animation)) shape.motions.emplace(*object.model, object.animation);
         for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);

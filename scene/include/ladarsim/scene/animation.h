@@ -79,6 +79,10 @@ struct AnimationChoice {
 /// Every node's model_from_node at rest (no animation playing), by node index.
 std::vector<Eigen::Affine3d> rest_model_from_node(const Animation& animation);
 
+/// The model's triangle indices by part: [0] those in no part (they move with the model), [1 + p]
+/// those of part p, each in increasing order.
+std::vector<std::vector<std::uint32_t>> triangles_by_part(const Model& model);
+
 /// True when the choice makes some part of the model move.
 bool animates(const Model& model, const AnimationChoice& choice);
 
