@@ -180,18 +180,32 @@ Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, doub
         for (std::size_t i = 0; i < cluster.points.size(); ++i)
             azimuth[i] = std::remainder(std::atan2(cluster.points[i].y(), cluster.points[i].x()) - reference_az, 2.0 * std::numbers::pi);
         std::vector<double> low(line_size.size(), std::numeric_limits<double>::infinity()), high(line_size.size(), -std::numeric_limits<double>::infinity());
-        std::vector<float> peak(line_size.size(), 0.0f), fullest_echoes;
-        for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        std::vector<double> elevation_sum(line_size.size(), 0.0);
+        std::vector<std::vector<float>> echoes(line_size.size());
+        for (const auto& [e, i] : elevation) {
             low[line_of[i]] = std::min(low[line_of[i]], azimuth[i]);
             high[line_of[i]] = std::max(high[line_of[i]], azimuth[i]);
-            peak[line_of[i]] = std::max(peak[line_of[i]], intensity[i]);
-            if (line_of[i] == fullest_line) fullest_echoes.push_back(intensity[i]);
+            elevation_sum[line_of[i]] += e;
+            echoes[line_of[i]].push_back(intensity[i]);
         }
-        // The fullest line's median echo: a cloud's return that joined it does not move it.
-        const auto middle = fullest_echoes.begin() + static_cast<std::ptrdiff_t>(fullest_echoes.size() / 2);
-        std::nth_element(fullest_echoes.begin(), middle, fullest_echoes.end());
-        for (std::size_t l = 0; l < line_size.size(); ++l)
-            kept_line[l] = kept_line[l] || (low[l] >= low[fullest_line] && high[l] <= high[fullest_line] && peak[l] < *middle);
+        const float fullest_peak = *std::max_element(echoes[fullest_line].begin(), echoes[fullest_line].end());
+        const auto mean_elevation = [&](std::size_t l) { return elevation_sum[l] / static_cast<double>(line_size[l]); };
+        const std::vector<bool> full_line = kept_line;
+        for (std::size_t l = 0; l < line_size.size(); ++l) {
+            if (full_line[l] || low[l] < low[fullest_line] || high[l] > high[fullest_line]) continue;
+            // A fringe line's typical echo (its lower median: one glint does not move it) is
+            // weaker than the line nearest the target's strongest.
+            const auto lower_middle = echoes[l].begin() + static_cast<std::ptrdiff_t>((echoes[l].size() - 1) / 2);
+            std::nth_element(echoes[l].begin(), lower_middle, echoes[l].end());
+            // A target lower than a line pitch reaches the fringe of the lines beside the one or
+            // two that see it fully, no further: where two do, it lies between them, and a third
+            // line is 1.5 pitches off it (the paper's raster: a beam's weight there is 1e-4 of its
+            // peak).
+            bool beside_every_full_line = true;
+            for (std::size_t f = 0; f < line_size.size(); ++f)
+                if (full_line[f]) beside_every_full_line = beside_every_full_line && std::abs(mean_elevation(l) - mean_elevation(f)) <= 1.5 * line_pitch_rad;
+            kept_line[l] = *lower_middle < fullest_peak && beside_every_full_line;
+        }
     }
     Cluster out;
     for (std::size_t i = 0; i < cluster.points.size(); ++i)
