@@ -6,20 +6,10 @@
 #include <numbers>
 #include <numeric>
 
-#include <pcl/filters/radius_outlier_removal.h>
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
+#include "neighbours_within.h"
 
 namespace ladarsim::detect {
 namespace {
-
-pcl::PointCloud<pcl::PointXYZ>::Ptr to_pcl(const Points& points) {
-    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-    cloud->reserve(points.size());
-    for (const auto& p : points) cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-    return cloud;
-}
 
 int find(std::vector<int>& parent, int i) {
     while (parent[static_cast<std::size_t>(i)] != i) {
@@ -34,16 +24,11 @@ int find(std::vector<int>& parent, int i) {
 std::vector<Cluster> rbnn(const Points& points, double radius_m) {
     std::vector<Cluster> clusters;
     if (points.empty()) return clusters;
-    const auto cloud = to_pcl(points);
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-    tree.setInputCloud(cloud);
+    const std::vector<std::vector<int>> neighbours = neighbours_within(points, radius_m);
     std::vector<int> parent(points.size());
     std::iota(parent.begin(), parent.end(), 0);
-    std::vector<int> neighbours;
-    std::vector<float> distances;
     for (int i = 0; i < static_cast<int>(points.size()); ++i) {
-        tree.radiusSearch((*cloud)[static_cast<std::size_t>(i)], radius_m, neighbours, distances);
-        for (int j : neighbours) {
+        for (int j : neighbours[static_cast<std::size_t>(i)]) {
             const int a = find(parent, i), b = find(parent, j);
             if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
         }
@@ -87,32 +72,31 @@ double acquisition_range_m(const Points& points) {
 }
 
 Points remove_outliers(const Points& points, double radius_m, int min_neighbours) {
-    if (points.empty()) return points;
-    const auto cloud = to_pcl(points);
-    pcl::RadiusOutlierRemoval<pcl::PointXYZ> filter;
-    filter.setInputCloud(cloud);
-    filter.setRadiusSearch(radius_m);
-    filter.setMinNeighborsInRadius(min_neighbours);
-    pcl::Indices kept;
-    filter.filter(kept);
+    // As PCL's RadiusOutlierRemoval over a dense cloud decides: a point stays when its
+    // (min_neighbours + 1)-th nearest, itself first, lies within the radius (squared, in double).
+    // FLANN's radius search keeps what lies strictly inside its float radius: searched a float
+    // step wider, then held to that test.
+    const double radius2 = radius_m * radius_m;
+    const float wider = std::nextafter(std::nextafter(static_cast<float>(radius2), std::numeric_limits<float>::infinity()),
+                                       std::numeric_limits<float>::infinity());
+    std::vector<std::vector<float>> squared;
+    neighbours_within(points, std::sqrt(static_cast<double>(wider)), &squared);
     Points out;
-    out.reserve(kept.size());
-    for (auto i : kept) out.push_back(points[static_cast<std::size_t>(i)]);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const auto within = std::count_if(squared[i].begin(), squared[i].end(), [&](float d2) { return static_cast<double>(d2) <= radius2; });
+        if (within >= min_neighbours + 1) out.push_back(points[i]);
+    }
     return out;
 }
 
 Points remove_incoherent(const Points& points, double radius_m, double tolerance_m, int min_neighbours) {
     if (points.empty()) return points;
-    const auto cloud = to_pcl(points);
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-    tree.setInputCloud(cloud);
+    const std::vector<std::vector<int>> neighbours_of = neighbours_within(points, radius_m);
     std::vector<double> ranges(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) ranges[i] = points[i].cast<double>().norm();
-    std::vector<int> neighbours;
-    std::vector<float> distances;
     Points out;
     for (std::size_t i = 0; i < points.size(); ++i) {
-        tree.radiusSearch((*cloud)[i], radius_m, neighbours, distances);
+        const std::vector<int>& neighbours = neighbours_of[i];
         const auto agreeing = std::count_if(neighbours.begin(), neighbours.end(), [&](int j) {
             return static_cast<std::size_t>(j) != i && std::abs(ranges[static_cast<std::size_t>(j)] - ranges[i]) <= tolerance_m;
         });
@@ -124,21 +108,19 @@ Points remove_incoherent(const Points& points, double radius_m, double tolerance
 Points without_volume_echoes(const Points& points, double pitch_rad, double tolerance_m, double window_m) {
     if (points.empty()) return points;
     // Directions as points on the unit sphere: beams a pitch apart lie a pitch apart there.
-    pcl::PointCloud<pcl::PointXYZ>::Ptr directions(new pcl::PointCloud<pcl::PointXYZ>);
-    directions->reserve(points.size());
+    Points directions;
+    directions.reserve(points.size());
     std::vector<double> ranges(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         ranges[i] = points[i].cast<double>().norm();
-        const Eigen::Vector3f u = points[i] / static_cast<float>(ranges[i]);
-        directions->push_back(pcl::PointXYZ(u.x(), u.y(), u.z()));
+        directions.push_back(points[i] / static_cast<float>(ranges[i]));
     }
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-    tree.setInputCloud(directions);
-    std::vector<int> neighbours;
-    std::vector<float> squared;
+    std::vector<std::vector<float>> squared_of;
+    const std::vector<std::vector<int>> neighbours_of = neighbours_within(directions, 1.5 * pitch_rad, &squared_of);
     Points out;
     for (std::size_t i = 0; i < points.size(); ++i) {
-        tree.radiusSearch((*directions)[i], 1.5 * pitch_rad, neighbours, squared);
+        const std::vector<int>& neighbours = neighbours_of[i];
+        const std::vector<float>& squared = squared_of[i];
         bool echo_train = false, beside = false;
         for (std::size_t k = 0; k < neighbours.size(); ++k) {
             const auto j = static_cast<std::size_t>(neighbours[k]);
@@ -180,18 +162,32 @@ Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, doub
         for (std::size_t i = 0; i < cluster.points.size(); ++i)
             azimuth[i] = std::remainder(std::atan2(cluster.points[i].y(), cluster.points[i].x()) - reference_az, 2.0 * std::numbers::pi);
         std::vector<double> low(line_size.size(), std::numeric_limits<double>::infinity()), high(line_size.size(), -std::numeric_limits<double>::infinity());
-        std::vector<float> peak(line_size.size(), 0.0f), fullest_echoes;
-        for (std::size_t i = 0; i < cluster.points.size(); ++i) {
+        std::vector<double> elevation_sum(line_size.size(), 0.0);
+        std::vector<std::vector<float>> echoes(line_size.size());
+        for (const auto& [e, i] : elevation) {
             low[line_of[i]] = std::min(low[line_of[i]], azimuth[i]);
             high[line_of[i]] = std::max(high[line_of[i]], azimuth[i]);
-            peak[line_of[i]] = std::max(peak[line_of[i]], intensity[i]);
-            if (line_of[i] == fullest_line) fullest_echoes.push_back(intensity[i]);
+            elevation_sum[line_of[i]] += e;
+            echoes[line_of[i]].push_back(intensity[i]);
         }
-        // The fullest line's median echo: a cloud's return that joined it does not move it.
-        const auto middle = fullest_echoes.begin() + static_cast<std::ptrdiff_t>(fullest_echoes.size() / 2);
-        std::nth_element(fullest_echoes.begin(), middle, fullest_echoes.end());
-        for (std::size_t l = 0; l < line_size.size(); ++l)
-            kept_line[l] = kept_line[l] || (low[l] >= low[fullest_line] && high[l] <= high[fullest_line] && peak[l] < *middle);
+        const float fullest_peak = *std::max_element(echoes[fullest_line].begin(), echoes[fullest_line].end());
+        const auto mean_elevation = [&](std::size_t l) { return elevation_sum[l] / static_cast<double>(line_size[l]); };
+        const std::vector<bool> full_line = kept_line;
+        for (std::size_t l = 0; l < line_size.size(); ++l) {
+            if (full_line[l] || low[l] < low[fullest_line] || high[l] > high[fullest_line]) continue;
+            // A fringe line's typical echo (its lower median: one glint does not move it) is
+            // weaker than the line nearest the target's strongest.
+            const auto lower_middle = echoes[l].begin() + static_cast<std::ptrdiff_t>((echoes[l].size() - 1) / 2);
+            std::nth_element(echoes[l].begin(), lower_middle, echoes[l].end());
+            // A target lower than a line pitch reaches the fringe of the lines beside the one or
+            // two that see it fully, no further: where two do, it lies between them, and a third
+            // line is 1.5 pitches off it (the paper's raster: a beam's weight there is 1e-4 of its
+            // peak).
+            bool beside_every_full_line = true;
+            for (std::size_t f = 0; f < line_size.size(); ++f)
+                if (full_line[f]) beside_every_full_line = beside_every_full_line && std::abs(mean_elevation(l) - mean_elevation(f)) <= 1.5 * line_pitch_rad;
+            kept_line[l] = *lower_middle < fullest_peak && beside_every_full_line;
+        }
     }
     Cluster out;
     for (std::size_t i = 0; i < cluster.points.size(); ++i)

@@ -255,9 +255,10 @@ TEST_CASE("clutter: the cued tracker keeps a drone inside a volume whose returns
     check_followed(12, 4, 8, [](double range) { return volume_about(range, 8); });
 }
 
-TEST_CASE("clutter: a sparse line under the fullest line's run, weaker than its median echo, is the target's", "[detect][clutter]") {
+TEST_CASE("clutter: a sparse line under the fullest line's run and beside it, typically weaker than its peak, is the target's", "[detect][clutter]") {
     // The drone midway between lines at 1.9 km: 9 returns on one line (echoes 200-1,200), 2 on
-    // the other, seen through the beam's fringe (200), under the first line's run.
+    // the other, seen through the beam's fringe, under the first line's run: one of them a glint
+    // 4 times the first line's median (dataset 4 over Autzen, frame 59: 2,180 against 543).
     Points target;
     std::vector<float> echoes;
     for (int column = 0; column < 9; ++column) {
@@ -268,24 +269,51 @@ TEST_CASE("clutter: a sparse line under the fullest line's run, weaker than its 
         target.push_back(along(1876.3, column * kPitchAz, kPitchEl));
         echoes.push_back(200.0f);
     }
+    echoes[9] = 2200.0f;
     const Cluster c{target, bounding_box(target)};
     CHECK(without_sparse_lines(c, kPitchEl, 0.25, echoes).points == target);
-    // Without intensities, or with the sparse line's echoes as strong as the median (a cloud's
-    // layer is brighter than a small target), or reaching beyond the run, the line is dropped.
+    // Without intensities, or with the sparse line's echoes all brighter than the first line's
+    // strongest (a cloud's layer is brighter than a small target), or reaching beyond the run,
+    // the line is dropped.
     const Points lower(target.begin(), target.begin() + 9);
     CHECK(without_sparse_lines(c, kPitchEl, 0.25).points == lower);
     std::vector<float> bright = echoes;
-    bright[9] = 700.0f;
+    bright[10] = 1300.0f;
     CHECK(without_sparse_lines(c, kPitchEl, 0.25, bright).points == lower);
     Points beyond = target;
     beyond[10] = along(1876.3, 9 * kPitchAz, kPitchEl);
     CHECK(without_sparse_lines(Cluster{beyond, bounding_box(beyond)}, kPitchEl, 0.25, echoes).points == lower);
-    // A bright return of a cloud on the fullest line does not move its median.
+}
+
+TEST_CASE("clutter: where two lines see the target fully, a weak line beyond either is not its fringe", "[detect][clutter]") {
+    // Dataset 3, frame 219: the drone at 626 m between two lines that both hold it (peaks 5.8e4
+    // and 5.3e4); the cloud's back layer left 3 weak returns (1.3e3) at its range on the line
+    // below the lower one, under their run. The target lies 1.5 pitches from that line: a beam
+    // there sees 1e-4 of it.
+    Points target;
+    std::vector<float> echoes;
+    for (int row = 0; row < 2; ++row)
+        for (int column = 0; column < 13; ++column) {
+            target.push_back(along(626.16, column * kPitchAz, -row * kPitchEl));
+            echoes.push_back(static_cast<float>(58000.0 - 7000.0 * std::abs(column - 6)));
+        }
     Points with_cloud = target;
-    std::vector<float> with_cloud_echoes = bright;
-    with_cloud.push_back(along(1876.3, 8 * kPitchAz, 0.0));
-    with_cloud_echoes.push_back(1.0e5f);
-    CHECK(without_sparse_lines(Cluster{with_cloud, bounding_box(with_cloud)}, kPitchEl, 0.25, with_cloud_echoes).points.size() == 10);
+    std::vector<float> with_cloud_echoes = echoes;
+    for (int column : {8, 10, 11}) {
+        with_cloud.push_back(along(625.92, column * kPitchAz, -2 * kPitchEl));
+        with_cloud_echoes.push_back(1300.0f);
+    }
+    CHECK(without_sparse_lines(Cluster{with_cloud, bounding_box(with_cloud)}, kPitchEl, 0.25, with_cloud_echoes).points == target);
+    // The same returns beside a target that one line alone holds are its fringe.
+    const Points upper(target.begin(), target.begin() + 13);
+    const std::vector<float> upper_echoes(echoes.begin(), echoes.begin() + 13);
+    Points fringe = upper;
+    std::vector<float> fringe_echoes = upper_echoes;
+    for (int column : {8, 10, 11}) {
+        fringe.push_back(along(626.16, column * kPitchAz, -kPitchEl));
+        fringe_echoes.push_back(1300.0f);
+    }
+    CHECK(without_sparse_lines(Cluster{fringe, bounding_box(fringe)}, kPitchEl, 0.25, fringe_echoes).points == fringe);
 }
 
 namespace {

@@ -118,6 +118,11 @@ TEST_CASE("outlier removal keeps points with nMin neighbours, and boxes over 1 m
     CHECK(remove_outliers(row, 0.06, 3).empty());
     CHECK(remove_outliers(row, 0.06, 2).size() == 6);  // the two ends have one neighbour each
     CHECK(remove_outliers(row, 0.11, 3).size() == 8);  // within 0.105 m even the ends have three
+    // A neighbour exactly at the radius counts (PCL's RadiusOutlierRemoval: the k-th nearest
+    // within it), where a strict radius search would drop it.
+    const Points pair = {{0.0f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}};
+    CHECK(remove_outliers(pair, 0.5, 1).size() == 2);
+    CHECK(remove_outliers(pair, std::nextafter(0.5, 0.0), 1).empty());
     // A 2 m wide cluster is rejected, the drone is kept.
     std::vector<Cluster> clusters = rbnn(wall(300.0f, 0.1f, 21), 0.15);
     const auto drone = rbnn(drone_at({600.0f, 0.0f, 20.0f}), 0.3);

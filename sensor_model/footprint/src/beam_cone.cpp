@@ -37,7 +37,13 @@ BeamCone::BeamCone(const FootprintContext& context, const std::vector<scene::Sce
             shape.points.push_back((mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).cast<double>() / 3.0);
             shape.part.push_back(part_of[t]);
         }
-        if (scene::animates(*object.model, object.animation)) shape.motions.emplace(*object.model, object.animation);
+        if (scene::animates(*object.model, object.animation)) {
+            shape.motions.emplace(*object.model, object.animation);
+            shape.part_boxes.assign(by_part.size(), Eigen::AlignedBox3d());
+            for (std::size_t p = 0; p < by_part.size(); ++p)
+                for (const std::uint32_t t : by_part[p])
+                    for (const std::uint32_t v : mesh.triangles[t]) shape.part_boxes[p].extend(mesh.positions[v].cast<double>());
+        }
         for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);
     }
 }
@@ -108,12 +114,31 @@ std::optional<FootprintRect> BeamCone::outline_of(const raytrace::ObjectBounds& 
     const double r_max = footprint.max_offset_rad();
     const Eigen::Vector3d& origin = aim.origin_world;
     const Eigen::Matrix3d beam_from_world = aim.world_from_beam.transpose();
-    // The outline of the object's box as the beam sees it: its eight corners' offsets.
+    // The outline of the object's box as the beam sees it: its eight corners' offsets. An animated
+    // object's parts are boxed where its animation has them at the beam's time (its sub-rays'
+    // time): the box over the whole animation is wider (a bird's wingbeat makes it 5 times the
+    // volume), and the map behind it went to the sub-rays instead of the map's own integration.
+    thread_local std::vector<Eigen::Vector3d> corners;
+    corners.clear();
+    const auto shape = target_shapes_.find(b.object_id);
+    if (shape != target_shapes_.end() && shape->second.motions) {
+        thread_local std::vector<Eigen::Affine3d> motions;
+        shape->second.motions->at(aim.time_s, motions);
+        for (std::size_t p = 0; p < shape->second.part_boxes.size(); ++p) {
+            const Eigen::AlignedBox3d& box = shape->second.part_boxes[p];
+            if (box.isEmpty()) continue;
+            for (int k = 0; k < 8; ++k) {
+                const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
+                corners.push_back(p == 0 ? corner : Eigen::Vector3d(motions[p - 1] * corner));
+            }
+        }
+    } else {
+        for (int k = 0; k < 8; ++k) corners.push_back(b.box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)));
+    }
     FootprintRect outline{r_max, -r_max, r_max, -r_max};
     bool in_front = !inside;
-    for (int k = 0; k < 8 && in_front; ++k) {
-        const Eigen::Vector3d corner = b.box_model.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
-        const Eigen::Vector3d c = beam_from_world * (b.world_from_model * corner.homogeneous() - origin);
+    for (std::size_t k = 0; k < corners.size() && in_front; ++k) {
+        const Eigen::Vector3d c = beam_from_world * (b.world_from_model * corners[k].homogeneous() - origin);
         in_front = c.x() > 0.0;
         const Eigen::Vector2d o = context_.shape.offset_of(c);
         outline = {std::min(outline.x_lo, o.x()), std::max(outline.x_hi, o.x()), std::min(outline.y_lo, o.y()),

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "footprint_context.h"
 #include "ladarsim/scene/animation.h"
@@ -23,6 +24,8 @@ struct TargetSeeds {
     std::vector<std::int32_t> part;
     /// Set when some part moves: points are placed at each beam's time.
     std::optional<scene::PartMotions> motions;
+    /// With `motions`: the box at rest of the triangles in no part, then of each part's.
+    std::vector<Eigen::AlignedBox3d> part_boxes;
     double max_reflectance = 0.0;  ///< of its materials: bounds its echo
 };
 

@@ -69,12 +69,15 @@ Points without_volume_echoes(const Points& points, double pitch_rad, double tole
 /// by half a line pitch. Lines are told apart by elevation (sensor frame): a gap of more than half
 /// `line_pitch_rad` starts a new one. Keeps the lines holding at least `min_fraction` of the
 /// fullest line's returns and, given one `intensity` per point, a sparser line whose returns lie
-/// within the fullest line's span of azimuth and whose strongest echo is weaker than that line's
-/// median echo: a target's line further from it sees it through the beam's fringe (a few beams
-/// above the threshold, under the fullest line's run, as weak as that line's edges), as at 1.9 km
-/// where the drone lies midway and one line holds 2 returns to the other's 9; a cloud's return
-/// comes from anywhere within the clustering radius, with the cloud's own strength (dataset 3's
-/// front layer echoes 4 times the drone's peak, 10 times its median).
+/// within the fullest line's span of azimuth, whose lower median echo is weaker than that line's
+/// strongest, and that lies within 1.5 pitches of every line kept for its count: a target's line
+/// further from it sees it through the beam's fringe (a few beams above the threshold, under the
+/// fullest line's run, as weak as that line's edges but for a glint), as at 1.9 km where the
+/// drone lies midway and one line holds 2 returns to the other's 9; a target lower than a pitch
+/// that two lines hold lies between them, beyond any third line's fringe. A cloud's return comes
+/// from anywhere within the clustering radius, with the cloud's own strength (dataset 3's front
+/// layer echoes 4 times the drone's peak; its back layer's weak returns joined the drone at
+/// 626 m on the line below the two that held it).
 Cluster without_sparse_lines(const Cluster& cluster, double line_pitch_rad, double min_fraction,
                              const std::vector<float>& intensity = {});
 

@@ -57,7 +57,8 @@ struct DetectorConfig {
     double volume_echo_window_m = 5.0;
     /// The cued target's tracker drops the scan lines of a core holding fewer than this fraction
     /// of its fullest line's returns (without_sparse_lines), while range_coherence_m > 0, unless
-    /// the frames carry intensities and the line is a weak one under the fullest line's run.
+    /// the frames carry intensities and the line is the target's fringe: weak, under the fullest
+    /// line's run and beside the lines that hold it.
     double sparse_line_fraction = 0.25;
     /// Algorithm 1 predicts instead of detecting when calRange < 1 or calRange jumps by > 1000.
     /// Read as millimetres that is 1 m between frames, 20 m/s at 20 Hz, slower than the paper's own
