@@ -36,6 +36,7 @@ for d in sys.argv[2:]:
     if cls:
         conf = {k: {p: n for p, n in v.items() if n} for k, v in cls["confusion"].items() if any(v.values())}
         out["confusion"] = conf
+        out["unclassified"] = {k: n for k, n in cls.get("unclassified", {}).items() if n}
         pc = cls["per_class"].get("drone", {})
         out["drone_p_r"] = (pc.get("precision"), pc.get("recall"))
     out["frames"] = {k: v for k, v in frames.items() if v}
