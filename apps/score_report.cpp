@@ -68,10 +68,14 @@ void report_scores(const nlohmann::json& scores, const std::string& json_path, c
     if (scores.contains("classification")) {
         const auto& c = scores["classification"];
         const auto& drone = c["per_class"]["drone"];
-        std::printf("  track classes (%d tracks): drone precision %s, recall %s; %d bird tracks called drones; class settled after %.1f "
-                    "frames on average\n",
-                    c["tracks"].get<int>(), figure(drone["precision"], "", "none").c_str(), figure(drone["recall"], "", "none").c_str(),
-                    c["confusion"]["bird"]["drone"].get<int>(), c["frames_to_settle"]["mean"].get<double>());
+        int unclassified = 0;
+        for (const auto& [name, n] : c["unclassified"].items()) unclassified += n.get<int>();
+        const auto& settle = c["frames_to_settle"];
+        std::printf("  track classes (%d tracks, %d too short for a class): drone precision %s, recall %s; %d bird tracks called "
+                    "drones; class settled after %s frames on average\n",
+                    c["tracks"].get<int>(), unclassified, figure(drone["precision"], "", "none").c_str(),
+                    figure(drone["recall"], "", "none").c_str(), c["confusion"]["bird"]["drone"].get<int>(),
+                    figure(settle.is_null() ? settle : settle["mean"], "", "no").c_str());
     }
     if (scores.contains("eao")) {
         const auto& interval = scores["eao_interval"];

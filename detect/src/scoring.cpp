@@ -113,7 +113,14 @@ std::vector<std::vector<TrackCentre>> read_tracks(const Sequence& s, const nlohm
         const std::size_t i = matcher.place(f, k);
         const nlohmann::json& objects = f.array("objects");
         for (std::size_t t = 0; t < objects.size(); ++t) {
-            JsonFields o(objects[t], file, f.path_of("objects") + "[" + std::to_string(t) + "]");
+            nlohmann::json object = objects[t];
+            // A track too young for a class carries null for both (track_classification.h's kMinClassFrames).
+            if (object.is_object() && object.contains("class") && object["class"].is_null() &&
+                object.value("class_confidence", nlohmann::json()).is_null()) {
+                object.erase("class");
+                object.erase("class_confidence");
+            }
+            JsonFields o(object, file, f.path_of("objects") + "[" + std::to_string(t) + "]");
             TrackCentre h;
             h.track = static_cast<std::uint32_t>(o.integer("track", 0, std::numeric_limits<std::uint32_t>::max()));
             const OrientedBox box = read_box(o);

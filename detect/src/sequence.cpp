@@ -265,7 +265,7 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
     for (const auto& d : detect_sequence(s, config)) out["detections"].push_back(to_json(d));
     out["tracks"] = nlohmann::json::array();
     const auto tracked = track_sequence(s, config);
-    const auto classes = classifier ? classify_tracks(s.time_s, tracked, *classifier) : std::vector<std::vector<TrackClass>>{};
+    const auto classes = classifier ? classify_tracks(s.time_s, tracked, *classifier) : std::vector<std::vector<std::optional<TrackClass>>>{};
     for (std::size_t i = 0; i < tracked.size(); ++i) {
         nlohmann::json tracks = nlohmann::json::array();
         const auto& frame = tracked[i];
@@ -277,9 +277,10 @@ nlohmann::json detection_report(const Sequence& s, const DetectorConfig& config,
             j["predicted"] = t.predicted;
             j["score"] = t.score;
             if (classifier) {
-                const TrackClass& c = classes[i][tracks.size()];
-                j["class"] = track_class_names()[c.index];
-                j["class_confidence"] = c.confidence;
+                // Null while the track is too young for a class (kMinClassFrames).
+                const std::optional<TrackClass>& c = classes[i][tracks.size()];
+                j["class"] = c ? nlohmann::json(track_class_names()[c->index]) : nlohmann::json(nullptr);
+                j["class_confidence"] = c ? nlohmann::json(c->confidence) : nlohmann::json(nullptr);
             }
             tracks.push_back(j);
         }

@@ -18,6 +18,12 @@ nlohmann::json ratio(int numerator, int denominator) {
     return denominator > 0 ? nlohmann::json(static_cast<double>(numerator) / denominator) : nlohmann::json(nullptr);
 }
 
+// Frames with a cluster: a predicted frame measures nothing.
+std::size_t frames_seen(const std::vector<TrackSample>& samples) {
+    return static_cast<std::size_t>(std::count_if(samples.begin(), samples.end(), [](const TrackSample& t) { return !t.predicted; }));
+}
+
+
 }  // namespace
 
 std::vector<TrackHistory> track_histories(const std::vector<double>& time_s, const std::vector<std::vector<TrackedObject>>& tracked) {
@@ -74,30 +80,38 @@ void add_training_rows(const Sequence& s, const DetectorConfig& config, std::vec
     for (const TrackHistory& h : track_histories(s.time_s, track_sequence(s, config))) {
         const std::size_t label = followed_class(h, truth);
         std::vector<TrackSample> prefix;
-        // Doubling up to the feature window, then a window's half at a time.
+        // Doubling up to the feature window, then a window's half at a time; only where the track
+        // is given a class (a row of a younger one would teach what its length says).
         for (std::size_t n = 4; n < h.samples.size(); n += std::min(n, kTrackFeatureFrames / 2)) {
             prefix.assign(h.samples.begin(), h.samples.begin() + static_cast<std::ptrdiff_t>(n));
+            if (frames_seen(prefix) < kMinClassFrames) continue;
             features.push_back(track_features(prefix));
             labels.push_back(label);
         }
+        if (frames_seen(h.samples) < kMinClassFrames) continue;
         features.push_back(track_features(h.samples));
         labels.push_back(label);
     }
 }
 
-std::vector<std::vector<TrackClass>> classify_tracks(const std::vector<double>& time_s,
-                                                     const std::vector<std::vector<TrackedObject>>& tracked,
-                                                     const TrackClassifier& classifier) {
+std::vector<std::vector<std::optional<TrackClass>>> classify_tracks(const std::vector<double>& time_s,
+                                                                    const std::vector<std::vector<TrackedObject>>& tracked,
+                                                                    const TrackClassifier& classifier) {
     std::map<std::uint32_t, std::vector<TrackSample>> so_far;
-    std::vector<std::vector<TrackClass>> out;
+    std::vector<std::vector<std::optional<TrackClass>>> out;
     for (std::size_t i = 0; i < tracked.size(); ++i) {
         std::vector<TrackFeatures> rows;
-        for (const TrackedObject& t : tracked[i]) {
-            auto& samples = so_far[t.track];
-            samples.push_back(sample_of(time_s[i], t));
+        std::vector<std::size_t> row_of;
+        for (std::size_t k = 0; k < tracked[i].size(); ++k) {
+            auto& samples = so_far[tracked[i][k].track];
+            samples.push_back(sample_of(time_s[i], tracked[i][k]));
+            if (frames_seen(samples) < kMinClassFrames) continue;
+            row_of.push_back(k);
             rows.push_back(track_features(samples));
         }
-        out.push_back(classifier.classify(rows));
+        out.emplace_back(tracked[i].size());
+        const std::vector<TrackClass> classes = classifier.classify(rows);
+        for (std::size_t r = 0; r < rows.size(); ++r) out.back()[row_of[r]] = classes[r];
     }
     return out;
 }
@@ -124,24 +138,32 @@ nlohmann::json classification_scores(const Sequence& s, const nlohmann::json& tr
             sample.centre = {c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()};
             sample.predicted = o.value("predicted", false);
             h.samples.push_back(sample);
-            classes[track].push_back(track_class_index(o.at("class").get<std::string>()));
+            // Null: too young for a class (kMinClassFrames); kTrackClassCount stands for it.
+            const auto& c_name = o.at("class");
+            classes[track].push_back(c_name.is_null() ? kTrackClassCount : track_class_index(c_name.get<std::string>()));
         }
     }
     if (!any_class) return nullptr;
     const auto truth = followable_truth(s);
     const auto& names = track_class_names();
     std::array<std::array<int, kTrackClassCount>, kTrackClassCount> confusion{};
+    std::array<int, kTrackClassCount> unclassified{};
     std::vector<double> settle;
     for (const auto& [track, h] : histories) {
-        const std::vector<std::size_t>& c = classes[track];
-        const std::size_t predicted = std::min(c.back(), kTrackClassCount - 1);
-        ++confusion[followed_class(h, truth)][predicted];
+        std::vector<std::size_t> c = classes[track];
+        c.erase(std::remove(c.begin(), c.end(), kTrackClassCount), c.end());
+        const std::size_t truth_class = followed_class(h, truth);
+        if (classes[track].back() == kTrackClassCount) {
+            ++unclassified[truth_class];
+            continue;
+        }
+        ++confusion[truth_class][std::min(c.back(), kTrackClassCount - 1)];
         std::size_t last_change = 0;
         for (std::size_t k = 1; k < c.size(); ++k)
             if (c[k] != c[k - 1]) last_change = k;
         settle.push_back(static_cast<double>(last_change + 1));
     }
-    nlohmann::json per_class = nlohmann::json::object(), matrix = nlohmann::json::object();
+    nlohmann::json per_class = nlohmann::json::object(), matrix = nlohmann::json::object(), without = nlohmann::json::object();
     for (std::size_t t = 0; t < kTrackClassCount; ++t) {
         int row = 0, column = 0;
         for (std::size_t p = 0; p < kTrackClassCount; ++p) {
@@ -149,16 +171,19 @@ nlohmann::json classification_scores(const Sequence& s, const nlohmann::json& tr
             column += confusion[p][t];
             matrix[std::string(names[t])][std::string(names[p])] = confusion[t][p];
         }
+        without[std::string(names[t])] = unclassified[t];
         per_class[std::string(names[t])] = {{"tracks", row}, {"called", column}, {"precision", ratio(confusion[t][t], column)},
                                             {"recall", ratio(confusion[t][t], row)}};
     }
     std::sort(settle.begin(), settle.end());
     double mean = 0.0;
     for (double v : settle) mean += v / static_cast<double>(settle.size());
+    const nlohmann::json settling = settle.empty() ? nlohmann::json(nullptr) : nlohmann::json{{"mean", mean}, {"median", settle[settle.size() / 2]}};
     return {{"tracks", histories.size()},
             {"per_class", per_class},
             {"confusion", matrix},
-            {"frames_to_settle", {{"mean", mean}, {"median", settle[settle.size() / 2]}}}};
+            {"unclassified", without},
+            {"frames_to_settle", settling}};
 }
 
 }  // namespace ladarsim::detect

@@ -21,7 +21,6 @@ struct Moments {
     double sd() const { return n > 1 ? std::sqrt(std::max(0.0, sum2 / n - mean() * mean())) : 0.0; }
 };
 
-constexpr std::size_t kMinFlickerFrames = 8;
 // Above this the return count's flicker is a wingbeat (a bird's are 2-15 Hz), below it is the
 // track's own slower course: a weave of seconds, a turn towards the beam.
 constexpr double kHighFlicker_hz = 2.0;
@@ -80,8 +79,8 @@ Flicker flicker(const std::vector<double>& x, double period_s) {
 const std::array<std::string_view, kTrackFeatureCount>& track_feature_names() {
     static const std::array<std::string_view, kTrackFeatureCount> names = {
         "speed_mps", "speed_sd_mps", "accel_mps2", "turn_rate_dps", "climb_rate_mps", "altitude_sd_m",
-        "extent_m", "extent_sd_m", "returns", "returns_cv", "flicker_hz", "flicker_peak_fraction",
-        "flicker_high_fraction", "range_m", "returns_range2", "frames_seen"};
+        "extent_m", "extent_sd_m", "returns", "returns_noise", "flicker_hz", "flicker_peak_fraction",
+        "flicker_high_fraction", "returns_range2", "frames_seen"};
     return names;
 }
 
@@ -136,9 +135,8 @@ TrackFeatures track_features(const std::vector<TrackSample>& all_samples) {
     const double range_km = range.mean() / 1000.0;
     const double values[kTrackFeatureCount] = {speed.mean(), speed.sd(), accel.mean(), turn.mean(), climb.mean(),
                                                rms(detrended(seen_time, height)), extent.mean(), extent.sd(), returns.mean(),
-                                               returns.mean() > 0.0 ? rms(fluctuation) / returns.mean() : 0.0, flick.peak_hz,
-                                               flick.peak_fraction, flick.high_fraction, range.mean(),
-                                               returns.mean() * range_km * range_km, static_cast<double>(seen.size())};
+                                               returns.mean() > 0.0 ? rms(fluctuation) / std::sqrt(returns.mean()) : 0.0, flick.peak_hz,
+                                               flick.peak_fraction, flick.high_fraction, returns.mean() * range_km * range_km, static_cast<double>(seen.size())};
     for (std::size_t i = 0; i < kTrackFeatureCount; ++i) f[i] = static_cast<float>(values[i]);
     return f;
 }

@@ -21,13 +21,29 @@ python3 - "$work/d.json" "$work/scores.json" <<'PY' || fail "classes or classifi
 import json, sys
 d = json.load(open(sys.argv[1]))
 objects = [o for f in d["tracks"] for o in f["objects"]]
-assert objects and all(o["class"] in ("drone", "bird", "plane", "clutter") and 0 < o["class_confidence"] <= 1 for o in objects)
+assert objects and all(o["class"] in ("drone", "bird", "plane", "clutter") and 0 < o["class_confidence"] <= 1 or
+                       o["class"] is None and o["class_confidence"] is None for o in objects)
+# A track has no class (null) until it has shown a few frames with a cluster, the same few for every
+# track, and never again after it has one.
+young = {}
+for o in objects:
+    h = young.setdefault(o["track"], {"seen": 0, "classed": False, "seen_before_class": None})
+    if o["class"] is None:
+        assert not h["classed"], f"track {o['track']} lost its class"
+    elif not h["classed"]:
+        h["classed"], h["seen_before_class"] = True, h["seen"]
+    h["seen"] += not o["predicted"]
+waits = {h["seen_before_class"] for h in young.values() if h["classed"]}
+assert len(waits) == 1 and min(waits) >= 1, f"tracks waited {waits} frames with a cluster for a class"
+assert all(h["seen"] <= min(waits) for h in young.values() if not h["classed"])
 c = json.load(open(sys.argv[2]))["classification"]
 classes = ("drone", "bird", "plane", "clutter")
-assert sum(c["confusion"][t][p] for t in classes for p in classes) == c["tracks"] > 0
+unclassified = sum(1 for h in young.values() if not h["classed"])
+assert sum(c["unclassified"].values()) == unclassified
+assert sum(c["confusion"][t][p] for t in classes for p in classes) + unclassified == c["tracks"] > unclassified
 for k in classes:
     pc = c["per_class"][k]
-    assert pc["tracks"] == sum(c["confusion"][k].values())
+    assert pc["tracks"] == sum(c["confusion"][k].values())  # the classified tracks; c["unclassified"][k] more
     assert pc["recall"] is None or 0 <= pc["recall"] <= 1
     assert pc["precision"] is None or 0 <= pc["precision"] <= 1
 assert c["frames_to_settle"]["mean"] >= 1

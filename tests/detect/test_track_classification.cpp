@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "ladarsim/detect/track_classification.h"
+#include "ladarsim/detect/track_classifier.h"
 
 using namespace ladarsim::detect;
 
@@ -55,4 +56,38 @@ TEST_CASE("a track follows the nearest object in most of its frames, and predict
     h.samples[4].centre = h.samples[5].centre = h.samples[6].centre = {401.4, 0.0, 30.0};
     h.samples[0].predicted = h.samples[1].predicted = h.samples[2].predicted = h.samples[3].predicted = false;
     CHECK(class_name(followed_class(h, truth)) == "bird");
+}
+
+TEST_CASE("a track gets a class from its kMinClassFrames-th frame with a cluster on, none before", "[track_classification]") {
+    // Any model will do: what is checked is which tracks it is asked about.
+    std::vector<TrackFeatures> x(8, TrackFeatures{});
+    std::vector<std::size_t> y{0, 1, 2, 3, 0, 1, 2, 3};
+    for (std::size_t i = 0; i < x.size(); ++i) x[i][0] = static_cast<float>(i);
+    const TrackClassifier model = TrackClassifier::train(x, y);
+    // Track 1 from frame 0, unseen (predicted) in frame 2; track 2 from frame 3. 20 Hz.
+    const std::size_t frames = kMinClassFrames + 5;
+    std::vector<double> time_s;
+    std::vector<std::vector<TrackedObject>> tracked(frames);
+    for (std::size_t i = 0; i < frames; ++i) {
+        time_s.push_back(0.05 * static_cast<double>(i));
+        for (std::uint32_t track : {1u, 2u}) {
+            if (track == 2 && i < 3) continue;
+            TrackedObject t;
+            t.track = track;
+            t.box.centre = {400.0 + 0.3 * static_cast<double>(i), 10.0 * track, 30.0};
+            t.box.size = {0.3, 0.3, 0.1};
+            t.predicted = track == 1 && i == 2;
+            t.points = t.predicted ? 0 : 20 + i % 3;
+            tracked[i].push_back(t);
+        }
+    }
+    const auto classes = classify_tracks(time_s, tracked, model);
+    REQUIRE(classes.size() == frames);
+    for (std::size_t i = 0; i < frames; ++i) {
+        REQUIRE(classes[i].size() == tracked[i].size());
+        for (std::size_t k = 0; k < tracked[i].size(); ++k) {
+            const std::size_t seen = tracked[i][k].track == 2 ? i - 2 : (i < 2 ? i + 1 : i);
+            CHECK(classes[i][k].has_value() == (seen >= kMinClassFrames));
+        }
+    }
 }

@@ -40,7 +40,7 @@ TEST_CASE("a straight, level track at constant speed: its speed, no acceleration
     CHECK(feature(f, "climb_rate_mps") == Approx(0.0).margin(1e-4));
     CHECK(feature(f, "extent_m") == Approx(0.3).epsilon(1e-5));
     CHECK(feature(f, "returns") == Approx(12.0));
-    CHECK(feature(f, "returns_cv") == Approx(0.0).margin(1e-6));
+    CHECK(feature(f, "returns_noise") == Approx(0.0).margin(1e-6));
     CHECK(feature(f, "frames_seen") == Approx(40.0));
 }
 
@@ -73,7 +73,8 @@ TEST_CASE("a return count beating at 6 Hz in 20 Hz frames: flicker at 6 Hz with 
     // Bins are 20 / 64 = 0.31 Hz apart.
     CHECK(feature(f, "flicker_hz") == Approx(6.0).margin(0.32));
     CHECK(feature(f, "flicker_peak_fraction") > 0.5);
-    CHECK(feature(f, "returns_cv") > 0.2);
+    // 8 / sqrt(2) RMS about 20: 1.26 times counting noise's sqrt(20).
+    CHECK(feature(f, "returns_noise") == Approx(8.0 / std::sqrt(2.0) / std::sqrt(20.0)).epsilon(0.05));
     // A steady count has no flicker.
     for (auto& s : samples) s.points = 20;
     CHECK(feature(track_features(samples), "flicker_peak_fraction") == 0.0f);
