@@ -87,12 +87,15 @@ struct BenchCommand {
                                             : s["footprint_samples"] == 0
                                                 ? "adaptive " + std::to_string(s["footprint_tolerance"].get<double>()).substr(0, 5)
                                                 : std::to_string(s["footprint_samples"].get<int>()) + " fixed";
-                std::printf("%s, %s: count %+.1f %%, energy %+.1f %%, range error mean %.1f / median %.1f mm, %.2f %% beams off, %d missing beams, "
-                            "%.1f rays/beam, %.0f beams/s\n",
+                char with_targets[64] = "";
+                if (s.contains("beams_off_with_targets_pct"))
+                    std::snprintf(with_targets, sizeof with_targets, " (%.2f %% with a target too)", s["beams_off_with_targets_pct"].get<double>());
+                std::printf("%s, %s: count %+.1f %%, energy %+.1f %%, range error mean %.1f / median %.1f mm, %.2f %% beams off%s, %d missing "
+                            "beams, %.1f rays/beam, %.0f beams/s\n",
                             c["case"].get<std::string>().c_str(), setting.c_str(), s["count_error_pct"].get<double>(),
                             s["energy_error_pct"].get<double>(), s["mean_first_return_error_mm"].get<double>(),
-                            s["median_first_return_error_mm"].get<double>(), s["beams_off_pct"].get<double>(), s["missing_beams"].get<int>(),
-                            s["rays_per_beam"].get<double>(), s["beams_per_s"].get<double>());
+                            s["median_first_return_error_mm"].get<double>(), s["beams_off_pct"].get<double>(), with_targets,
+                            s["missing_beams"].get<int>(), s["rays_per_beam"].get<double>(), s["beams_per_s"].get<double>());
             }
         }
     }

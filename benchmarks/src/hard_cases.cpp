@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "bench_frames.h"
@@ -62,6 +63,9 @@ struct BeamErrors {
     double max_fraction_error = 0.0;///< largest |energy - reference| / full echo (extended targets)
     double range_error_mm = 0.0;    ///< mean |first range - reference| over beams both report
     double beams_off_pct = 0.0;     ///< of beams both report, those whose first ranges differ by > kOffRange_m
+    /// The part of beams_off_pct whose beam the reference also sees a drone, bird or aircraft in
+    /// (in front of the map): where the judged object's error comes from.
+    double beams_off_with_targets_pct = 0.0;
     double total_energy_error_pct = 0.0;  ///< summed energy against the reference's
     /// Their median: a few beams whose first return is another surface's (one reports a weak near
     /// return the other does not) dominate the mean at grazing incidence.
@@ -92,10 +96,19 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
         return beams;
     };
     const auto got = tally(r), want = tally(reference);
+    std::set<std::uint32_t> targets;
+    for (const scene::SceneObject& o : c.scenario.scene.objects)
+        if (o.id != c.object_id && (o.object_class == scene::ObjectClass::drone || o.object_class == scene::ObjectClass::bird ||
+                                    o.object_class == scene::ObjectClass::plane))
+            targets.insert(o.id);
+    std::set<std::uint64_t> with_targets;
+    for (std::size_t f = 0; f < reference.frames.size(); ++f)
+        for (const Return& ret : reference.frames[f].returns)
+            if (targets.contains(ret.object_id)) with_targets.insert((std::uint64_t(f) << 32) | (std::uint64_t{ret.row} << 16) | ret.column);
     const double threshold = threshold_pe(c.scenario);
     BeamErrors e;
     double abs_sum = 0.0, ref_sum = 0.0, range_sum = 0.0, got_sum = 0.0;
-    int off = 0;
+    int off = 0, off_with_targets = 0;
     std::vector<double> range_errors;
     int both = 0;
     for (const auto& [key, b] : got) {
@@ -116,6 +129,7 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
         range_sum += std::abs(it->second.first_range_m - w.first_range_m);
         range_errors.push_back(std::abs(it->second.first_range_m - w.first_range_m));
         off += range_errors.back() > kOffRange_m;
+        off_with_targets += range_errors.back() > kOffRange_m && with_targets.contains(key);
         ++both;
     }
     for (const auto& [key, b] : got) {
@@ -127,6 +141,7 @@ BeamErrors compare_beams(const HardCase& c, const Rendering& r, const Rendering&
     e.energy_error_pct = ref_sum > 0.0 ? 100.0 * abs_sum / ref_sum : 0.0;
     e.range_error_mm = both ? 1e3 * range_sum / both : 0.0;
     e.beams_off_pct = both ? 100.0 * off / both : 0.0;
+    e.beams_off_with_targets_pct = both ? 100.0 * off_with_targets / both : 0.0;
     e.total_energy_error_pct = ref_sum > 0.0 ? 100.0 * (got_sum - ref_sum) / ref_sum : 0.0;
     if (!range_errors.empty()) {
         const auto middle = range_errors.begin() + static_cast<std::ptrdiff_t>(range_errors.size() / 2);
@@ -359,6 +374,7 @@ json run_case(const HardCase& c, const BenchOptions& options, const std::vector<
                     {"mean_first_return_error_mm", e.range_error_mm},
                     {"median_first_return_error_mm", e.median_range_error_mm},
                     {"beams_off_pct", e.beams_off_pct}};
+        if (c.object_id == scene::kBackgroundObjectId) row["beams_off_with_targets_pct"] = e.beams_off_with_targets_pct;
         if (c.full_echo_pe) row["max_energy_fraction_error"] = e.max_fraction_error;
         if (s.samples == 0 && s.tolerance == default_tolerance) row["default"] = true;
         if (s.another_seed) row["reference_with_another_seed"] = true;
