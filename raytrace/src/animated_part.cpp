@@ -85,10 +85,7 @@ void AnimatedObject::set_window(double begin_s, double length_s) {
 
 AnimatedPart::AnimatedPart(const AnimatedObject& object, int part, RTCScene bvh, const scene::TriangleMesh& mesh,
                            const std::vector<std::uint32_t>& triangles)
-    : object_(&object), part_(part), bvh_(bvh), serial_(parts_made++) {
-    for (const std::uint32_t t : triangles)
-        for (const std::uint32_t v : mesh.triangles[t]) box_model_.extend(mesh.positions[v].cast<double>());
-}
+    : object_(&object), part_(part), bvh_(bvh), box_model_(scene::bounds_of(mesh, triangles)), serial_(parts_made++) {}
 
 Geometry AnimatedPart::make_geometry(RTCDevice device) const {
     Geometry g(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER));

@@ -231,11 +231,8 @@ Eigen::AlignedBox3d animated_bounds(const Model& model, const AnimationChoice& c
     // Each part's rest box; triangles in no part stay where they are.
     const std::vector<std::vector<std::uint32_t>> lists = triangles_by_part(model);
     std::vector<Eigen::AlignedBox3d> part_box(animation.parts.size());
-    for (std::size_t p = 0; p < animation.parts.size(); ++p)
-        for (const std::uint32_t t : lists[p + 1])
-            for (std::uint32_t v : mesh.triangles[t]) part_box[p].extend(mesh.positions[v].cast<double>());
-    for (const std::uint32_t t : lists[0])
-        for (std::uint32_t v : mesh.triangles[t]) box.extend(mesh.positions[v].cast<double>());
+    for (std::size_t p = 0; p < animation.parts.size(); ++p) part_box[p] = bounds_of(mesh, lists[p + 1]);
+    box = bounds_of(mesh, lists[0]);
 
     // Samples over the longest chosen loop, at least 16 per key interval of its busiest channel.
     double duration = 0.0;

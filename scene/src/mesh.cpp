@@ -14,4 +14,11 @@ bool Model::is_volume() const {
     return !materials.empty() && std::all_of(materials.begin(), materials.end(), [](const Material& m) { return m.is_volume(); });
 }
 
+Eigen::AlignedBox3d bounds_of(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangles) {
+    Eigen::AlignedBox3d box;
+    for (const std::uint32_t t : triangles)
+        for (const std::uint32_t v : mesh.triangles[t]) box.extend(mesh.positions[v].cast<double>());
+    return box;
+}
+
 }  // namespace ladarsim::scene

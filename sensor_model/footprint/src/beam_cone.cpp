@@ -39,10 +39,7 @@ BeamCone::BeamCone(const FootprintContext& context, const std::vector<scene::Sce
         }
         if (scene::animates(*object.model, object.animation)) {
             shape.motions.emplace(*object.model, object.animation);
-            shape.part_boxes.assign(by_part.size(), Eigen::AlignedBox3d());
-            for (std::size_t p = 0; p < by_part.size(); ++p)
-                for (const std::uint32_t t : by_part[p])
-                    for (const std::uint32_t v : mesh.triangles[t]) shape.part_boxes[p].extend(mesh.positions[v].cast<double>());
+            for (const std::vector<std::uint32_t>& triangles : by_part) shape.part_boxes.push_back(scene::bounds_of(mesh, triangles));
         }
         for (const scene::Material& m : object.model->materials) shape.max_reflectance = std::max(shape.max_reflectance, m.reflectance);
     }

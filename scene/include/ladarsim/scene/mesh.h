@@ -41,6 +41,10 @@ struct TriangleMesh {
     std::vector<std::uint32_t> triangle_material;
 };
 
+/// The box at rest (model frame) of the mesh's `triangles` (indices into mesh.triangles): what an
+/// animation part's placements move.
+Eigen::AlignedBox3d bounds_of(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangles);
+
 struct Animation;
 
 /// A loaded model: the whole glTF node hierarchy flattened into one mesh in model coordinates.
