@@ -45,6 +45,13 @@ JsonFields::JsonFields(const nlohmann::json& object, std::string file, std::stri
 
 bool JsonFields::has(const std::string& key) const { return object_.contains(key); }
 
+bool JsonFields::null(const std::string& key) {
+    const auto it = object_.find(key);
+    if (it == object_.end() || !it->is_null()) return false;
+    used_.insert(key);
+    return true;
+}
+
 std::string JsonFields::path_of(const std::string& key) const {
     return path_.empty() ? key : path_ + "." + key;
 }

@@ -113,14 +113,7 @@ std::vector<std::vector<TrackCentre>> read_tracks(const Sequence& s, const nlohm
         const std::size_t i = matcher.place(f, k);
         const nlohmann::json& objects = f.array("objects");
         for (std::size_t t = 0; t < objects.size(); ++t) {
-            nlohmann::json object = objects[t];
-            // A track too young for a class carries null for both (track_classification.h's kMinClassFrames).
-            if (object.is_object() && object.contains("class") && object["class"].is_null() &&
-                object.value("class_confidence", nlohmann::json()).is_null()) {
-                object.erase("class");
-                object.erase("class_confidence");
-            }
-            JsonFields o(object, file, f.path_of("objects") + "[" + std::to_string(t) + "]");
+            JsonFields o(objects[t], file, f.path_of("objects") + "[" + std::to_string(t) + "]");
             TrackCentre h;
             h.track = static_cast<std::uint32_t>(o.integer("track", 0, std::numeric_limits<std::uint32_t>::max()));
             const OrientedBox box = read_box(o);
@@ -128,7 +121,11 @@ std::vector<std::vector<TrackCentre>> read_tracks(const Sequence& s, const nlohm
             h.score = o.number("score", -1e300, 1e300);
             o.integer("points", 0, kMaxFrame, 0);
             o.boolean("predicted", false);
-            if (o.has("class")) {
+            // A track too young for a class carries null for both (track_classification.h's kMinClassFrames).
+            if (o.null("class")) {
+                if (o.has("class_confidence") && !o.null("class_confidence"))
+                    o.fail("class_confidence", "must be null where class is (a track too young for a class)");
+            } else if (o.has("class")) {
                 std::vector<std::string> names(track_class_names().begin(), track_class_names().end());
                 o.choice("class", names, "");
                 o.number("class_confidence", 0.0, 1.0);

@@ -133,3 +133,15 @@ TEST_CASE("json_fields: a misspelt required key is reported as the unknown key i
     CHECK(input_error_of([&] { f.number("beams_az", 0, 10); }).field() == "objects[0].trajectory.beams_az");
     CHECK(input_error_of([&] { f.number("x", 0, 10); }).problem() == "required field is missing");
 }
+
+TEST_CASE("json_fields: a null is read only where the key holds null", "[json_fields]") {
+    const auto j = nlohmann::json::parse(R"({"class": null, "score": 0.5})");
+    JsonFields f(j, "d.json", "tracks[0].objects[1]");
+    CHECK(f.null("class"));
+    CHECK_FALSE(f.null("score"));
+    CHECK_FALSE(f.null("absent"));
+    // The null was read; the number was not, and is still unknown until it is.
+    CHECK(input_error_of([&] { f.reject_unknown_keys(); }).field() == "tracks[0].objects[1].score");
+    f.number("score", 0, 1);
+    CHECK_NOTHROW(f.reject_unknown_keys());
+}

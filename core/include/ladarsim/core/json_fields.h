@@ -18,6 +18,8 @@ public:
     JsonFields(const nlohmann::json& object, std::string file, std::string path);
 
     bool has(const std::string& key) const;
+    /// Whether the key holds null; if so it is read (marked as used), else left alone.
+    bool null(const std::string& key);
     /// Full field path of a key, for messages: "objects[2].trajectory.speed_mps".
     std::string path_of(const std::string& key) const;
     const std::string& file() const { return file_; }
