@@ -80,6 +80,20 @@ TEST_CASE("a variant in another folder changes, removes and adds objects of the 
     CHECK(s.source["objects"][0]["trajectory"]["start_m"] == nlohmann::json::array({1000, 0, 50}));
 }
 
+TEST_CASE("a variant named without its folder, from the current directory, extends its base", "[scenario]") {
+    // `ladarsim render variant.json` run in the variant's folder: its path has no parent.
+    const test::ScratchDir dir;
+    write_base(dir / "a");
+    write(dir / "a" / "variant.json", R"({"extends": "base.json", "render": {"frames": 3}})");
+    const fs::path before = fs::current_path();
+    fs::current_path(dir / "a");
+    Scenario s;
+    CHECK_NOTHROW(s = load_scenario("variant.json"));
+    fs::current_path(before);
+    CHECK(s.render.frames == 3);
+    CHECK(object(s, 2).model->mesh.triangles.size() == 2);  // the base's model, read beside the base
+}
+
 TEST_CASE("null deletes a key of the base and a chain of extensions applies in order", "[scenario]") {
     const test::ScratchDir dir;
     write_base(dir.path());

@@ -76,7 +76,8 @@ json extend_document(json doc, const fs::path& file, std::set<fs::path>& chain) 
 
     json base = read_document(base_file, chain);
     if (!base.is_object()) throw InputError(base_file.string(), "(file)", "must hold a JSON object");
-    rebase_paths(base, base_file.parent_path(), file.parent_path());
+    // Absolute: a file named without a folder ("variant.json") has an empty parent path.
+    rebase_paths(base, fs::absolute(base_file).parent_path(), fs::absolute(file).parent_path());
     doc.erase("extends");
     for (auto& [key, value] : doc.items()) {
         if (key == "objects") {
