@@ -14,6 +14,10 @@ namespace ladarsim::sensor_model {
 
 namespace {
 
+/// Where the volume draws of a region's measuring sub-rays start: past every cell's 64 blocks
+/// (cell numbers stay under 2^24, kComplementSamples and a region's own).
+constexpr std::uint32_t kMeasuringDraws = 1u << 31;
+
 /// Whether a region's sub-rays met the recorded map.
 bool cells_meet_map(const RefinementRegion& region) {
     return std::any_of(region.nodes.begin(), region.nodes.end(), [](const RefinementRegion::Node& n) {
@@ -52,6 +56,7 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
     thread_local SettlingPass settling;
     bool first_cells = edge_ || map_;
     bool taken = false;  // by a first cells' shortcut
+    bool consulted = false;  // the cells were chosen from what their sub-rays met
     for (;;) {
         trace_new_cells(beam, r, out);
         out.surface.resize(fixed_surface);
@@ -61,6 +66,7 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
         const bool spent = r.nodes.size() + 4 > r.max_samples;
         if (spent && !first_cells) break;
         scratch.assign(out.surface.begin(), out.surface.end());
+        consulted = true;
         if (settling.settled(context_, r, beam.witnesses, scratch, out.volume)) break;
         if (std::exchange(first_cells, false)) {
             out.surface.resize(fixed_surface);
@@ -69,6 +75,22 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
             if (taken) break;
         }
         if (!split_marked(beam, r)) break;
+    }
+    if (!taken && plan_.outline && consulted && context_.settings.jitter) {
+        // Where the samples chose the cells, they do not also measure them: a hit that split
+        // its cell is kept at half its weight while a miss beside it that settled keeps all of
+        // its own, so the estimate of a sparse target ran low (a cell of weight w where a
+        // target covers p of it averages p w (1 + p) / 2 instead of p w). Every leaf of the
+        // final cells takes a fresh sub-ray: given the cells, an unbiased stratified estimate.
+        for (RefinementRegion::Node& n : r.nodes) {
+            if (!n.leaf()) continue;
+            place(beam, r, n, true);
+            n.traced = false;
+        }
+        trace_new_cells(beam, r, out, true);
+        out.surface.resize(fixed_surface);
+        out.volume = fixed_volume;
+        collect_echoes(r, out);
     }
     // The echoes are the beam's now, no longer the region's sub-rays'.
     for (std::size_t k = fixed_surface; k < out.surface.size(); ++k) out.surface[k].sample = 0;
@@ -79,17 +101,17 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
     return {Outcome::integrated, sampled};
 }
 
-void CellRefinement::place(const BeamSetting& beam, RefinementRegion& r, RefinementRegion::Node& n) const {
+void CellRefinement::place(const BeamSetting& beam, RefinementRegion& r, RefinementRegion::Node& n, bool measuring) const {
     double ju = 0.5, jv = 0.5;
     if (context_.settings.jitter) {
         const auto u = uniform4(context_.settings.seed, RandomStream::footprint_jitter, beam.frame, beam.aim.cell, r.number(n));
-        ju = u[0];
-        jv = u[1];
+        ju = u[measuring ? 2 : 0];
+        jv = u[measuring ? 3 : 1];
     }
     r.place(context_.shape.footprint(), n, n.u0 + ju * (n.u1 - n.u0), n.v0 + jv * (n.v1 - n.v0));
 }
 
-void CellRefinement::trace_new_cells(const BeamSetting& beam, RefinementRegion& r, BeamEchoes& out) const {
+void CellRefinement::trace_new_cells(const BeamSetting& beam, RefinementRegion& r, BeamEchoes& out, bool measuring) const {
     const Sensor& sensor = context_.sensor;
     thread_local std::vector<raytrace::Ray> rays;
     thread_local std::vector<std::optional<raytrace::Hit>> hits;
@@ -114,7 +136,8 @@ void CellRefinement::trace_new_cells(const BeamSetting& beam, RefinementRegion& 
         if (beam.media) {
             const std::vector<raytrace::VolumeSegment> segments = context_.traced.volumes_along(rays[i]);
             // Enough draws per sub-ray that no two share them (64 blocks of 4: one a segment).
-            RandomSequence draws(context_.settings.seed, RandomStream::volume_scatter, beam.frame, beam.aim.cell, 64 * r.number(n));
+            RandomSequence draws(context_.settings.seed, RandomStream::volume_scatter, beam.frame, beam.aim.cell,
+                                 64 * r.number(n) + (measuring ? kMeasuringDraws : 0));
             volumes.clear();
             add_volume_echoes(segments, hits[i] ? hits[i]->range_m : sensor.receiver.max_range_m,
                               sensor.transmitter.pulse_energy_j() * sensor.optics.optics_efficiency, 1.0,

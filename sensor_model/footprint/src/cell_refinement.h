@@ -38,10 +38,11 @@ public:
     Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
 
 private:
-    /// A cell's sub-ray: jittered within it when the render is, keyed by the cell's number.
-    void place(const BeamSetting& beam, RefinementRegion& r, RefinementRegion::Node& n) const;
-    /// Traces the sub-rays of the cells not traced yet.
-    void trace_new_cells(const BeamSetting& beam, RefinementRegion& r, BeamEchoes& out) const;
+    /// A cell's sub-ray: jittered within it when the render is, keyed by the cell's number (a
+    /// `measuring` sub-ray by the other two of the cell's four draws).
+    void place(const BeamSetting& beam, RefinementRegion& r, RefinementRegion::Node& n, bool measuring = false) const;
+    /// Traces the sub-rays of the cells not traced yet (`measuring`: with volume draws of their own).
+    void trace_new_cells(const BeamSetting& beam, RefinementRegion& r, BeamEchoes& out, bool measuring = false) const;
     /// Appends the echoes as they stand: every kept leaf's, weighted by its cell.
     void collect_echoes(RefinementRegion& r, BeamEchoes& out) const;
     /// At the first cells, unsettled: a straight edge, or the recorded map's sub-rays. True where
