@@ -3,7 +3,11 @@
 // wall's range and the extended target's whole echo.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 #include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "../support/closed_form_scenario.h"
@@ -82,4 +86,61 @@ TEST_CASE("the map's reference converges on a target thinner than its cells acro
     const double coarse = with_lines(128), fine = with_lines(256);
     REQUIRE(fine > 0.0);
     CHECK(coarse == Approx(fine).epsilon(0.05));
+}
+
+TEST_CASE("a target before the map: the map's echo in each beam is the whole echo less the target's share", "[footprint][map]") {
+    // A 6 cm plate drifting at 300 m before the disc wall: in the beams it shares, the map behind
+    // its outline is integrated over the outline's cells (or its line's lattice strata) by the
+    // row's map lines, each carrying what its sub-ray left to the map. Whatever the split, the wall's
+    // echo is the extended echo times the part of the beam the plate leaves: for a plate inside the
+    // truncation, one minus the Gaussian's mass over its square (separable in footprint offsets).
+    // (Measured: 32 beams over 3 frames, the worst 6e-4 of the beam off.)
+    constexpr double kSide = 0.06, kPlateDistance = 300.0;
+    const Eigen::Vector3d start(kPlateDistance, -0.15, 0.0), velocity(0.0, 1.0, 0.0);
+    Scenario s = disc_wall_scenario();
+    s.scene.objects.push_back(object_at(7, plate(kSide, 0.5), sliding(start, velocity)));
+    s.render.frames = 3;
+    FrameRenderer renderer(s);
+    std::vector<Return> returns;
+    for (std::uint64_t frame = 0; frame < 3; ++frame) {
+        const Frame f = renderer.render(frame);
+        returns.insert(returns.end(), f.returns.begin(), f.returns.end());
+    }
+    const double w = 0.5 * s.sensor.transmitter.divergence_mrad * 1e-3, sigma = 0.5 * w, r_max = s.render.footprint_truncation * w;
+    const double captured = 1.0 - std::exp(-2.0 * s.render.footprint_truncation * s.render.footprint_truncation);
+    auto phi = [&](double offset) { return 0.5 * std::erfc(-offset / (sigma * std::sqrt(2.0))); };
+    int shared = 0;
+    double worst = 0.0, sum = 0.0;
+    for (const Return& r : returns) {
+        if (r.object_id != scene::kBackgroundObjectId) continue;
+        const double cos_axis = std::cos(r.beam_el_rad) * std::cos(r.beam_az_rad);
+        CHECK(r.range_m == Approx(kWallDistance / cos_axis).margin(1e-3));
+        // The plate's corners in footprint offsets at the beam's time (x along the beam, y left, z up).
+        const Eigen::Matrix3d beam_from_world =
+            (Eigen::AngleAxisd(r.beam_az_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-r.beam_el_rad, Eigen::Vector3d::UnitY()))
+                .toRotationMatrix()
+                .transpose();
+        const Eigen::Vector3d centre = start + velocity * r.time_s;
+        double x_lo = 1e9, x_hi = -1e9, y_lo = 1e9, y_hi = -1e9;
+        bool inside = true;
+        for (const double dy : {-0.5 * kSide, 0.5 * kSide})
+            for (const double dz : {-0.5 * kSide, 0.5 * kSide}) {
+                const Eigen::Vector3d v = beam_from_world * (centre + Eigen::Vector3d(0.0, dy, dz));
+                const double x = std::atan2(v.y(), v.x()), y = std::atan2(v.z(), v.x());
+                x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+                inside = inside && std::hypot(x, y) < r_max;
+            }
+        const double share = inside ? (phi(x_hi) - phi(x_lo)) * (phi(y_hi) - phi(y_lo)) / captured : 0.0;
+        if (!(share > 0.01) || !inside) continue;
+        ++shared;
+        const double left = r.intensity / extended_target_photoelectrons(s.sensor, kReflectance, cos_axis, r.range_m);
+        const double error = left - (1.0 - share);
+        UNSCOPED_INFO("row " << r.row << " column " << r.column << ": plate's share " << share << ", map's " << left);
+        worst = std::max(worst, std::abs(error));
+        sum += error;
+    }
+    INFO(shared << " beams shared with the plate; worst error " << worst << " of the beam, mean " << sum / std::max(shared, 1));
+    REQUIRE(shared >= 10);
+    CHECK(worst < 0.005);
+    CHECK(std::abs(sum / shared) < 0.001);
 }

@@ -92,6 +92,11 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
         out.volume = fixed_volume;
         collect_echoes(r, out);
     }
+    if (!taken && map_cells_ && !r.media && cells_meet_map(r)) {
+        out.surface.resize(fixed_surface);
+        out.volume = fixed_volume;
+        collect_echoes(r, out, &beam);
+    }
     // The echoes are the beam's now, no longer the region's sub-rays'.
     for (std::size_t k = fixed_surface; k < out.surface.size(); ++k) out.surface[k].sample = 0;
     if (taken) return {Outcome::integrated, part.share};
@@ -158,7 +163,8 @@ void CellRefinement::trace_new_cells(const BeamSetting& beam, RefinementRegion& 
     }
 }
 
-void CellRefinement::collect_echoes(RefinementRegion& r, BeamEchoes& out) const {
+void CellRefinement::collect_echoes(RefinementRegion& r, BeamEchoes& out, const BeamSetting* over_map) const {
+    const Footprint& footprint = context_.shape.footprint();
     double kept_weight = 0.0;
     for (const RefinementRegion::Node& n : r.nodes)
         if (n.leaf() && n.kept) kept_weight += n.weight;
@@ -167,6 +173,11 @@ void CellRefinement::collect_echoes(RefinementRegion& r, BeamEchoes& out) const 
         const RefinementRegion::Node& n = r.nodes[k];
         if (!n.leaf() || !n.kept || n.weight <= 0.0) continue;
         const double w = n.weight * r.scale;
+        if (over_map && n.seen.hit && n.seen.echo.object_id == scene::kBackgroundObjectId) {
+            const FootprintRect cell{footprint.axis_offset(r.cdf_x0 + n.u0 * r.cdf_dx), footprint.axis_offset(r.cdf_x0 + n.u1 * r.cdf_dx),
+                                     footprint.axis_offset(r.cdf_y0 + n.v0 * r.cdf_dy), footprint.axis_offset(r.cdf_y0 + n.v1 * r.cdf_dy)};
+            if (map_cells_->integrate(*over_map, {cell, std::nullopt, w, 0}, out).outcome == Outcome::integrated) continue;
+        }
         if (n.seen.hit) {
             SurfaceEcho e = n.seen.echo;
             e.weight = w;

@@ -36,6 +36,10 @@ public:
 
     /// The share it returns is what its kept cells carry.
     Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
+    /// A target's outline over a recorded map: each final cell whose sub-ray met the map takes the
+    /// map's own integration over the cell (`rows`: MapRows, which integrates a rectangle) instead
+    /// of that sub-ray's single range.
+    void measure_map_by(const FootprintStrategy* rows) { map_cells_ = rows; }
 
 private:
     /// A cell's sub-ray: jittered within it when the render is, keyed by the cell's number (a
@@ -43,8 +47,9 @@ private:
     void place(const BeamSetting& beam, RefinementRegion& r, RefinementRegion::Node& n, bool measuring = false) const;
     /// Traces the sub-rays of the cells not traced yet (`measuring`: with volume draws of their own).
     void trace_new_cells(const BeamSetting& beam, RefinementRegion& r, BeamEchoes& out, bool measuring = false) const;
-    /// Appends the echoes as they stand: every kept leaf's, weighted by its cell.
-    void collect_echoes(RefinementRegion& r, BeamEchoes& out) const;
+    /// Appends the echoes as they stand: every kept leaf's, weighted by its cell (with
+    /// `over_map`, a leaf that met the recorded map by map_cells_ over its cell where it can).
+    void collect_echoes(RefinementRegion& r, BeamEchoes& out, const BeamSetting* over_map = nullptr) const;
     /// At the first cells, unsettled: a straight edge, or the recorded map's sub-rays. True where
     /// one of them took the part.
     bool first_cells_shortcut(const BeamSetting& beam, const FootprintPart& part, const RefinementRegion& r, BeamEchoes& out) const;
@@ -56,6 +61,7 @@ private:
     RefinementPlan plan_;
     const StraightEdge* edge_;
     const RecordedMapSampling* map_;
+    const FootprintStrategy* map_cells_ = nullptr;
 };
 
 }  // namespace ladarsim::sensor_model

@@ -109,6 +109,8 @@ void FootprintIntegrator::share_target_sub_rays(const TargetLattice* lattice) { 
 bool FootprintIntegrator::share_map_rows(const ScanPattern& raster) {
     if (!s_->map_lines || !MapRows::applicable(raster, s_->context.shape)) return false;
     s_->map_rows.emplace(s_->context, *s_->discs, raster, kMapLinesPerPitch);
+    s_->outline_cells.measure_map_by(&*s_->map_rows);
+    s_->target_grid.measure_map_by(&*s_->map_rows);
     return true;
 }
 
@@ -189,8 +191,9 @@ void FootprintIntegrator::Strategies::integrate_targets(const BeamSetting& beam,
         return BeamSetting{beam.aim, beam.probes, witnesses, beam.media, beam.frame, beam.lone_target_id};
     };
     const FootprintPart outline{*targets.outline, std::nullopt, 0.0, 0};
-    const Integration shared =
-        targets.count == 1 && !beam.media && target_lattice ? target_lattice->integrate(beam, outline, out) : Integration{Outcome::declined};
+    Integration shared{Outcome::declined};
+    if (targets.count == 1 && !beam.media && target_lattice)
+        shared = map_rows ? target_lattice->integrate_over_map(beam, outline, *map_rows, out) : target_lattice->integrate(beam, outline, out);
     double sampled = shared.share;  // its line's sub-rays over it
     if (shared.outcome != Outcome::integrated) {
         const bool bright_lone = targets.count == 1 && targets.brightest_j >= kBrightTargetThresholds * context.threshold_j;

@@ -225,21 +225,24 @@ Integration MapRows::integrate(const BeamSetting& beam, const FootprintPart& par
         const double delta = row.lines[j].azimuth_rad - azimuth;
         // The line's offset across the footprint at the beam's elevation.
         const double x = std::atan(ce * std::sin(delta) / (ce * ce * std::cos(delta) + se * se));
-        if (!(std::abs(x) < rho)) continue;
+        if (!(std::abs(x) < rho) || x < part.rect.x_lo || x > part.rect.x_hi) continue;
         const double across = footprint.axis_cdf(std::min(x + half_strip, rho)) - footprint.axis_cdf(std::max(x - half_strip, -rho));
         const double y_max = std::sqrt(rho * rho - x * x);
-        const double c_max = footprint.axis_cdf(y_max), c_min = footprint.axis_cdf(-y_max);
+        // Along the line, the footprint's chord within the part's rectangle (the square: all of it).
+        const double y_bottom = std::max(-y_max, part.rect.y_lo), y_top = std::min(y_max, part.rect.y_hi);
+        if (!(y_top > y_bottom)) continue;
+        const double c_max = footprint.axis_cdf(y_top), c_min = footprint.axis_cdf(y_bottom);
         auto add = [&](double ya, double ca, double yb, double cb) {
             if (!(yb > ya)) return;
             stretches.push_back({static_cast<std::uint32_t>(j), across, ya, yb, ca, cb});
             part_weight += across * (cb - ca);
         };
         if (part.excluded && x >= part.excluded->x_lo && x <= part.excluded->x_hi) {
-            const double e_lo = std::clamp(part.excluded->y_lo, -y_max, y_max), e_hi = std::clamp(part.excluded->y_hi, -y_max, y_max);
-            add(-y_max, c_min, e_lo, footprint.axis_cdf(e_lo));
-            add(e_hi, footprint.axis_cdf(e_hi), y_max, c_max);
+            const double e_lo = std::clamp(part.excluded->y_lo, y_bottom, y_top), e_hi = std::clamp(part.excluded->y_hi, y_bottom, y_top);
+            add(y_bottom, c_min, e_lo, footprint.axis_cdf(e_lo));
+            add(e_hi, footprint.axis_cdf(e_hi), y_top, c_max);
         } else {
-            add(-y_max, c_min, y_max, c_max);
+            add(y_bottom, c_min, y_top, c_max);
         }
     }
     if (!(part_weight > 0.0)) return {Outcome::empty};

@@ -30,8 +30,9 @@ public:
     /// axis) is `world_from_gimbal`. Rows are independent: any thread may take any row.
     void start_row(int row, const Eigen::Matrix3d& world_from_gimbal);
 
-    /// The echoes of the map over `part` outside part.excluded, carrying part.share of the beam
-    /// (its row started this frame). Declined in media, as MapScanline.
+    /// The echoes of the map over `part` (its rectangle: the square, or a cell of a target's
+    /// outline) outside part.excluded, carrying part.share of the beam (its row started this
+    /// frame). Empty where no line of the row crosses the rectangle; declined in media.
     Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
 
 private:

@@ -64,15 +64,21 @@ public:
     /// traced to `out.rays`, and returns the share of the beam they sampled. Nothing, with nothing
     /// appended, where the lattice does not hold the outline or holds too few of its sub-rays
     /// there (a footprint's edge across the target): the beam then samples the outline itself.
-    std::optional<double> gather(const BeamAim& aim, std::uint32_t object_id, const FootprintRect& outline, BeamEchoes& out) const;
+    /// With `map` (a recorded map's integration over a rectangle, MapRows), a sub-ray that met the
+    /// map brings the map's echoes over its stratum instead of its own single range.
+    std::optional<double> gather(const BeamSetting& beam, std::uint32_t object_id, const FootprintRect& outline, BeamEchoes& out,
+                                 const FootprintStrategy* map = nullptr) const;
     /// gather() as a strategy: the beam's lone target (beam.lone_target_id) inside part.rect.
     Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
+    /// integrate(), the map's sub-rays by `map` (see gather).
+    Integration integrate_over_map(const BeamSetting& beam, const FootprintPart& part, const FootprintStrategy& map, BeamEchoes& out) const;
 
 private:
     struct Point : LatticeSubRay {
         /// The share of the beam it carries per unit of the beam's irradiance where it lands.
         double per_irradiance = 0.0;
         double time_s = 0.0;          ///< when it left
+        double az_lo = 0.0, az_hi = 0.0, el_lo = 0.0, el_hi = 0.0;  ///< its stratum, in raster angles
     };
     struct Line {
         double el_rad = 0.0;              ///< the line's elevation offset
