@@ -164,20 +164,28 @@ void CellRefinement::trace_new_cells(const BeamSetting& beam, RefinementRegion& 
 }
 
 void CellRefinement::collect_echoes(RefinementRegion& r, BeamEchoes& out, const BeamSetting* over_map) const {
-    const Footprint& footprint = context_.shape.footprint();
     double kept_weight = 0.0;
     for (const RefinementRegion::Node& n : r.nodes)
         if (n.leaf() && n.kept) kept_weight += n.weight;
     r.scale = r.share > 0.0 && kept_weight > 0.0 ? r.share / kept_weight : 1.0;
+    auto on_map = [](const RefinementRegion::Node& n) { return n.seen.hit && n.seen.echo.object_id == scene::kBackgroundObjectId; };
+    // The map over the whole region, carrying what its cells' sub-rays gave it: as close to the
+    // reference as the map over each such cell (bench: 11.4 against 11.0 mm, 0.65 against 0.66 %
+    // of beams off), at a fifth less time over Autzen (a cell's lines bring as many pieces as the
+    // region's).
+    bool map_taken = false;
+    if (over_map) {
+        double map_weight = 0.0;
+        for (const RefinementRegion::Node& n : r.nodes)
+            if (n.leaf() && n.kept && n.weight > 0.0 && on_map(n)) map_weight += n.weight * r.scale;
+        map_taken = map_weight > 0.0 &&
+                    map_cells_->integrate(*over_map, {r.rect, std::nullopt, map_weight, 0}, out).outcome == Outcome::integrated;
+    }
     for (std::size_t k = 0; k < r.nodes.size(); ++k) {
         const RefinementRegion::Node& n = r.nodes[k];
         if (!n.leaf() || !n.kept || n.weight <= 0.0) continue;
         const double w = n.weight * r.scale;
-        if (over_map && n.seen.hit && n.seen.echo.object_id == scene::kBackgroundObjectId) {
-            const FootprintRect cell{footprint.axis_offset(r.cdf_x0 + n.u0 * r.cdf_dx), footprint.axis_offset(r.cdf_x0 + n.u1 * r.cdf_dx),
-                                     footprint.axis_offset(r.cdf_y0 + n.v0 * r.cdf_dy), footprint.axis_offset(r.cdf_y0 + n.v1 * r.cdf_dy)};
-            if (map_cells_->integrate(*over_map, {cell, std::nullopt, w, 0}, out).outcome == Outcome::integrated) continue;
-        }
+        if (map_taken && on_map(n)) continue;
         if (n.seen.hit) {
             SurfaceEcho e = n.seen.echo;
             e.weight = w;

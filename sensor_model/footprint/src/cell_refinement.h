@@ -36,9 +36,9 @@ public:
 
     /// The share it returns is what its kept cells carry.
     Integration integrate(const BeamSetting& beam, const FootprintPart& part, BeamEchoes& out) const override;
-    /// A target's outline over a recorded map: each final cell whose sub-ray met the map takes the
-    /// map's own integration over the cell (`rows`: MapRows, which integrates a rectangle) instead
-    /// of that sub-ray's single range.
+    /// A target's outline over a recorded map: the final cells whose sub-rays met the map bring
+    /// the map's own integration over the region (`rows`: MapRows, which integrates a rectangle),
+    /// carrying what they carry, instead of their sub-rays' single ranges.
     void measure_map_by(const FootprintStrategy* rows) { map_cells_ = rows; }
 
 private:
@@ -48,7 +48,7 @@ private:
     /// Traces the sub-rays of the cells not traced yet (`measuring`: with volume draws of their own).
     void trace_new_cells(const BeamSetting& beam, RefinementRegion& r, BeamEchoes& out, bool measuring = false) const;
     /// Appends the echoes as they stand: every kept leaf's, weighted by its cell (with
-    /// `over_map`, a leaf that met the recorded map by map_cells_ over its cell where it can).
+    /// `over_map`, the leaves that met the recorded map by map_cells_ over the region where it can).
     void collect_echoes(RefinementRegion& r, BeamEchoes& out, const BeamSetting* over_map = nullptr) const;
     /// At the first cells, unsettled: a straight edge, or the recorded map's sub-rays. True where
     /// one of them took the part.

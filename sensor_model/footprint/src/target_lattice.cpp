@@ -209,10 +209,6 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             const double az = az_lo + (i + ja) * step_az;
             const double el = el_at(cdf_lo + (j + je) * cdf_step);
             Point p;
-            p.az_lo = az_lo + i * step_az;
-            p.az_hi = p.az_lo + step_az;
-            p.el_lo = el_at(cdf_lo + j * cdf_step);
-            p.el_hi = el_at(cdf_lo + (j + 1) * cdf_step);
             p.direction_world = world_from_gimbal_ * direction_towards({az, el});
             // Drawn uniformly along the line in footprint offsets (azimuth foreshortened by the
             // line's elevation), and across it as the line's Gaussian: the stratum's probability
@@ -297,22 +293,17 @@ std::optional<double> TargetLattice::gather(const BeamSetting& beam, std::uint32
         total += weight;
     }
     if (static_cast<double>(kept.size()) < kMinShareOfBudget * grid_base_ * grid_base_ || !(total > 0.0)) return std::nullopt;
-    // The beam's footprint offsets of a direction given in raster angles.
-    auto offsets = [&](double az, double el) {
-        const Eigen::Vector3d v = beam_from_world * (world_from_gimbal_ * direction_towards({az, el}));
-        return Eigen::Vector2d(small_atan(v.y() / v.x()), small_atan(v.z() / v.x()) / ellipticity_);
-    };
+    // With the map's own integration: the map over the outline, carrying what the sub-rays that
+    // met it carry, instead of their single ranges (as CellRefinement::collect_echoes).
+    double map_weight = 0.0;
+    if (map)
+        for (const Kept& k : kept)
+            if (k.point->hit && k.point->object_id == scene::kBackgroundObjectId) map_weight += k.weight;
+    const bool map_taken =
+        map_weight > 0.0 && map->integrate(beam, {outline, std::nullopt, map_weight, 0}, out).outcome == Outcome::integrated;
     for (const Kept& k : kept) {
         const Point& p = *k.point;
-        if (!p.hit) continue;
-        if (map && p.object_id == scene::kBackgroundObjectId) {
-            // The map over the sub-ray's stratum (it stays where it is; only the target moves).
-            const Eigen::Vector2d a = offsets(p.az_lo, p.el_lo), b = offsets(p.az_hi, p.el_hi);
-            const Eigen::Vector2d c = offsets(p.az_lo, p.el_hi), d = offsets(p.az_hi, p.el_lo);
-            const FootprintRect stratum{std::min({a.x(), b.x(), c.x(), d.x()}), std::max({a.x(), b.x(), c.x(), d.x()}),
-                                        std::min({a.y(), b.y(), c.y(), d.y()}), std::max({a.y(), b.y(), c.y(), d.y()})};
-            if (map->integrate(beam, {stratum, std::nullopt, k.weight, 0}, out).outcome == Outcome::integrated) continue;
-        }
+        if (!p.hit || (map_taken && p.object_id == scene::kBackgroundObjectId)) continue;
         const double range = p.object_id == object_id ? (k.at_beam_time - origin_world_).norm() : p.range_m;
         out.surface.push_back({range, k.weight, p.unit_echo_j * k.weight, 0.0, p.object_id, k.at_beam_time, p.normal_world, 0});
     }

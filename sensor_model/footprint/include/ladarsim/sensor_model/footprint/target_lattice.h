@@ -64,8 +64,8 @@ public:
     /// traced to `out.rays`, and returns the share of the beam they sampled. Nothing, with nothing
     /// appended, where the lattice does not hold the outline or holds too few of its sub-rays
     /// there (a footprint's edge across the target): the beam then samples the outline itself.
-    /// With `map` (a recorded map's integration over a rectangle, MapRows), a sub-ray that met the
-    /// map brings the map's echoes over its stratum instead of its own single range.
+    /// With `map` (a recorded map's integration over a rectangle, MapRows), the sub-rays that met
+    /// the map bring its echoes over the outline instead of their own single ranges.
     std::optional<double> gather(const BeamSetting& beam, std::uint32_t object_id, const FootprintRect& outline, BeamEchoes& out,
                                  const FootprintStrategy* map = nullptr) const;
     /// gather() as a strategy: the beam's lone target (beam.lone_target_id) inside part.rect.
@@ -78,7 +78,6 @@ private:
         /// The share of the beam it carries per unit of the beam's irradiance where it lands.
         double per_irradiance = 0.0;
         double time_s = 0.0;          ///< when it left
-        double az_lo = 0.0, az_hi = 0.0, el_lo = 0.0, el_hi = 0.0;  ///< its stratum, in raster angles
     };
     struct Line {
         double el_rad = 0.0;              ///< the line's elevation offset
