@@ -23,7 +23,6 @@ std::size_t frames_seen(const std::vector<TrackSample>& samples) {
     return static_cast<std::size_t>(std::count_if(samples.begin(), samples.end(), [](const TrackSample& t) { return !t.predicted; }));
 }
 
-
 }  // namespace
 
 std::vector<TrackHistory> track_histories(const std::vector<double>& time_s, const std::vector<std::vector<TrackedObject>>& tracked) {

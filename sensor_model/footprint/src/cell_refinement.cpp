@@ -14,8 +14,8 @@ namespace ladarsim::sensor_model {
 
 namespace {
 
-/// Where the volume draws of a region's measuring sub-rays start: past every cell's 64 blocks
-/// (cell numbers stay under 2^24, kComplementSamples and a region's own).
+/// Where the volume draws of an outline's measuring sub-rays start: past every cell's 64 blocks
+/// (an outline's cell numbers, from kOutlineBase, stay under 2^23).
 constexpr std::uint32_t kMeasuringDraws = 1u << 31;
 
 /// Whether a region's sub-rays met the recorded map.
@@ -76,7 +76,8 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
         }
         if (!split_marked(beam, r)) break;
     }
-    if (!taken && plan_.outline && consulted && context_.settings.jitter) {
+    const bool measure = !taken && plan_.outline && consulted && context_.settings.jitter;
+    if (measure) {
         // Where the samples chose the cells, they do not also measure them: a hit that split
         // its cell is kept at half its weight while a miss beside it that settled keeps all of
         // its own, so the estimate of a sparse target ran low (a cell of weight w where a
@@ -88,14 +89,13 @@ Integration CellRefinement::integrate(const BeamSetting& beam, const FootprintPa
             n.traced = false;
         }
         trace_new_cells(beam, r, out, true);
-        out.surface.resize(fixed_surface);
-        out.volume = fixed_volume;
-        collect_echoes(r, out);
     }
-    if (!taken && map_cells_ && !r.media && cells_meet_map(r)) {
+    // The echoes again from the final sub-rays, the map's by its own integration where it can.
+    const BeamSetting* over_map = !taken && map_cells_ && !r.media && cells_meet_map(r) ? &beam : nullptr;
+    if (measure || over_map) {
         out.surface.resize(fixed_surface);
         out.volume = fixed_volume;
-        collect_echoes(r, out, &beam);
+        collect_echoes(r, out, over_map);
     }
     // The echoes are the beam's now, no longer the region's sub-rays'.
     for (std::size_t k = fixed_surface; k < out.surface.size(); ++k) out.surface[k].sample = 0;
