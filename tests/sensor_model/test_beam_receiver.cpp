@@ -190,3 +190,48 @@ TEST_CASE("echoes the waveform cannot tell apart enter it as one: the returns of
         CHECK(got[i].object_id == surfaces[expected[i].surface].object_id);
     }
 }
+
+TEST_CASE("a recorded map's surface metres deep draws its waveform: one surface or two, the same returns", "[beam_receiver]") {
+    // A stadium's stands over a recorded map: four steps a metre apart joined by weak risers, so
+    // that grouping by range gaps may make them one surface or two, as a few discs fall. Before,
+    // one surface took the closed form (one return at the mean range, of all the energy) and two
+    // the waveform (four returns): the first return jumped by 1.5 m on a disc or two.
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
+    const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
+    const double threshold_j = receiver.apd().threshold_a() / (receiver.apd().amps_per_watt() * receiver.waveform().pulse().peak_per_joule());
+    std::vector<Echo> steps;
+    for (int step = 0; step < 4; ++step) {
+        for (int k = 0; k < 21; ++k) steps.push_back({700.0 + step + 0.003 * (k - 10), 20.0 * threshold_j / 21, 0});
+        if (step < 3)
+            for (int k = 1; k < 10; ++k) steps.push_back({700.0 + step + 0.1 * k, 0.01 * threshold_j, 0});
+    }
+    auto surface = [&](std::size_t first, std::size_t last, bool profiled) {
+        BeamSurface s;
+        s.object_id = 0;
+        s.weight = 0.5;
+        s.profiled = profiled;
+        s.echoes.assign(steps.begin() + static_cast<std::ptrdiff_t>(first), steps.begin() + static_cast<std::ptrdiff_t>(last));
+        return s;
+    };
+    const std::size_t half = 2 * (21 + 9);  // the first two steps and the risers after them
+    const auto one = receiver.receive({surface(0, steps.size(), true)}, BeamKey{1, 0, 1});
+    const auto two = receiver.receive({surface(0, half, true), surface(half, steps.size(), true)}, BeamKey{1, 0, 1});
+    REQUIRE(two.size() == 4);
+    REQUIRE(one.size() == two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+        CHECK(one[i].range_m == Approx(two[i].range_m).margin(1e-3));
+        CHECK(one[i].range_m == Approx(700.0 + static_cast<double>(i)).margin(0.01));
+        CHECK(one[i].energy_j == Approx(two[i].energy_j).epsilon(1e-3));
+    }
+    // A patch's surface (its spread carried, not drawn) keeps the closed form: one return.
+    CHECK(receiver.receive({surface(0, steps.size(), false)}, BeamKey{1, 0, 1}).size() == 1);
+    // Centres within the pulse's sigma make one peak however they lie: the closed form, profiled
+    // or not (the first step alone).
+    const auto compact = receiver.receive({surface(0, 21, true)}, BeamKey{1, 0, 1});
+    const auto patch = receiver.receive({surface(0, 21, false)}, BeamKey{1, 0, 1});
+    REQUIRE(compact.size() == 1);
+    REQUIRE(patch.size() == 1);
+    CHECK(compact[0].range_m == patch[0].range_m);
+    CHECK(compact[0].energy_j == patch[0].energy_j);
+}

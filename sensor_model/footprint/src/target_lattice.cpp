@@ -223,6 +223,9 @@ void TargetLattice::trace_slot(Slot& slot, int line_index, std::uint32_t object_
             p.per_irradiance = step_az * std::cos(line.el_rad) * cdf_step * axis_peak * footprint_.cell_weight(1.0, 1.0) /
                                std::exp(-2.0 * y * y / (w_waist * w_waist)) * stretch;
             p.time_s = frame_start_s_ + time;
+            p.half_x = 0.5 * step_az * std::cos(line.el_rad);
+            p.below_y = y - footprint_.axis_offset(cdf_lo + j * cdf_step);
+            p.above_y = footprint_.axis_offset(cdf_lo + (j + 1) * cdf_step) - y;
             slot.points.push_back(p);
             raytrace::Ray ray;
             ray.origin_world = origin_world_;
@@ -273,6 +276,7 @@ std::optional<double> TargetLattice::gather(const BeamSetting& beam, std::uint32
         const Point* point;
         double weight;
         Eigen::Vector3d at_beam_time;  ///< where the beam meets what the sub-ray met
+        double x, y;                   ///< where it lands in the footprint
     };
     thread_local std::vector<Kept> kept;
     kept.clear();
@@ -289,21 +293,22 @@ std::optional<double> TargetLattice::gather(const BeamSetting& beam, std::uint32
         const double x = small_atan(v.y() / v.x()), y = small_atan(v.z() / v.x()) / ellipticity_;
         if (!footprint_.contains(outline, x, y) || !footprint_.within_truncation(x, y)) continue;
         const double weight = shape_.irradiance(x, y) * p.per_irradiance;
-        kept.push_back({&p, weight, on_target ? moved : p.point_world});
+        kept.push_back({&p, weight, on_target ? moved : p.point_world, x, y});
         total += weight;
     }
     if (static_cast<double>(kept.size()) < kMinShareOfBudget * grid_base_ * grid_base_ || !(total > 0.0)) return std::nullopt;
-    // With the map's own integration: the map over the outline, carrying what the sub-rays that
-    // met it carry, instead of their single ranges (as CellRefinement::collect_echoes).
-    double map_weight = 0.0;
-    if (map)
-        for (const Kept& k : kept)
-            if (k.point->hit && k.point->object_id == scene::kBackgroundObjectId) map_weight += k.weight;
-    const bool map_taken =
-        map_weight > 0.0 && map->integrate(beam, {outline, std::nullopt, map_weight, 0}, out).outcome == Outcome::integrated;
+    // With the map's own integration: the map over each stratum whose sub-ray met it, carrying
+    // what that sub-ray carries, instead of its single range (as CellRefinement::collect_echoes).
     for (const Kept& k : kept) {
         const Point& p = *k.point;
-        if (!p.hit || (map_taken && p.object_id == scene::kBackgroundObjectId)) continue;
+        if (!p.hit) continue;
+        if (map && p.object_id == scene::kBackgroundObjectId) {
+            const FootprintRect stratum{std::max(outline.x_lo, k.x - p.half_x), std::min(outline.x_hi, k.x + p.half_x),
+                                        std::max(outline.y_lo, k.y - p.below_y), std::min(outline.y_hi, k.y + p.above_y)};
+            if (stratum.x_lo < stratum.x_hi && stratum.y_lo < stratum.y_hi &&
+                map->integrate(beam, {stratum, std::nullopt, k.weight, 0}, out).outcome == Outcome::integrated)
+                continue;
+        }
         const double range = p.object_id == object_id ? (k.at_beam_time - origin_world_).norm() : p.range_m;
         out.surface.push_back({range, k.weight, p.unit_echo_j * k.weight, 0.0, p.object_id, k.at_beam_time, p.normal_world, 0});
     }

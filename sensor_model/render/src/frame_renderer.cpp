@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "ladarsim/scene/animation.h"
+#include "ladarsim/scene/scene.h"
 #include "ladarsim/sensor_model/sensor/beam_geometry.h"
 #include "ladarsim/sensor_model/signal/counter_random.h"
 #include "ladarsim/sensor_model/sensor/physical_constants.h"
@@ -311,6 +312,7 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
         integrator_.integrate(a, probes, frame, echoes);
         rays += static_cast<std::uint64_t>(echoes.rays);
         gather_surfaces(echoes.surface, sensor.receiver.return_gap_m, surfaces);
+        for (BeamSurface& s : surfaces) s.profiled = s.object_id == scene::kBackgroundObjectId;
         for (BeamSurface& v : echoes.volume) surfaces.push_back(std::move(v));
 
         const BeamKey key{scenario_.render.seed, frame, a.cell};

@@ -68,6 +68,16 @@ void append_merged(const std::vector<Echo>& echoes, double pulse_sigma_m, std::v
     }
 }
 
+/// Whether echoes' centres lie within `sigma_m` of their energy-weighted mean (standard deviation).
+bool compact(std::span<const Echo> echoes, double sigma_m) {
+    const auto [energy, sum] = energy_and_range_sum(echoes);
+    if (!(energy > 0.0)) return true;
+    const double mean = sum / energy;
+    double variance = 0.0;
+    for (const Echo& e : echoes) variance += e.energy_j * (e.range_m - mean) * (e.range_m - mean);
+    return variance <= sigma_m * sigma_m * energy;
+}
+
 }  // namespace
 
 BeamReceiver::BeamReceiver(const Sensor& sensor, const Atmosphere& atmosphere, bool noise)
@@ -167,7 +177,8 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
     }
 
     RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);
-    if (surfaces.size() == 1 && !windows) {
+    const double pulse_sigma_m = waveform_.pulse().sigma_s * 0.5 * kSpeedOfLight_mps;
+    if (surfaces.size() == 1 && !windows && (!surfaces.front().profiled || compact(surfaces.front().echoes, pulse_sigma_m))) {
         const DetectedReturn r = closed_form(surfaces.front(), noise);
         if (r.energy_j >= 0.0) returns.push_back(r);
     } else if (!surfaces.empty()) {
@@ -175,7 +186,6 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
         thread_local std::vector<DetectedPulse> pulses;
         echoes.clear();
         pulses.clear();
-        const double pulse_sigma_m = waveform_.pulse().sigma_s * 0.5 * kSpeedOfLight_mps;
         for (const BeamSurface& s : surfaces) {
             if (!sensor_.receiver.range_folding) {
                 append_merged(s.echoes, pulse_sigma_m, echoes);

@@ -78,6 +78,9 @@ private:
         /// The share of the beam it carries per unit of the beam's irradiance where it lands.
         double per_irradiance = 0.0;
         double time_s = 0.0;          ///< when it left
+        /// Its stratum about it, in footprint offsets: half its width across the line, and how
+        /// far it reaches below and above it along.
+        double half_x = 0.0, below_y = 0.0, above_y = 0.0;
     };
     struct Line {
         double el_rad = 0.0;              ///< the line's elevation offset
