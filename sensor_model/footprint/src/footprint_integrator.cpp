@@ -122,7 +122,6 @@ void FootprintIntegrator::integrate(const BeamAim& aim, std::span<const Probe> p
     out.surface.clear();
     out.volume.clear();
     out.rays = 0;
-    out.map_by_lines = false;
     const FootprintContext& context = s_->context;
     const FootprintPart whole{context.shape.footprint().square(), std::nullopt, 1.0, 0};
     if (!context.adaptive) {

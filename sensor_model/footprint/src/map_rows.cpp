@@ -279,7 +279,6 @@ Integration MapRows::integrate(const BeamSetting& beam, const FootprintPart& par
                                    context_.settings.origin_world + range * d, p->normal_world, 0});
         }
     }
-    out.map_by_lines = true;
     return {Outcome::integrated, part.share};
 }
 

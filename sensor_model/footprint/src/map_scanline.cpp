@@ -222,7 +222,6 @@ Integration MapScanline::integrate(const BeamSetting& beam, const FootprintPart&
                                    h.object_id, rays[c].origin_world + h.range_m * rays[c].direction, h.normal_world, 0});
         }
     }
-    out.map_by_lines = true;
     return {Outcome::integrated, part.share};
 }
 

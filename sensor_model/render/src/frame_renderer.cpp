@@ -312,7 +312,7 @@ std::vector<Return> FrameRenderer::trace_steps(int row, int first_step, int end_
         integrator_.integrate(a, probes, frame, echoes);
         rays += static_cast<std::uint64_t>(echoes.rays);
         gather_surfaces(echoes.surface, sensor.receiver.return_gap_m, surfaces);
-        for (BeamSurface& s : surfaces) s.profiled = echoes.map_by_lines && s.object_id == scene::kBackgroundObjectId;
+        for (BeamSurface& s : surfaces) s.profiled = s.object_id == scene::kBackgroundObjectId;
         for (BeamSurface& v : echoes.volume) surfaces.push_back(std::move(v));
 
         const BeamKey key{scenario_.render.seed, frame, a.cell};

@@ -51,9 +51,6 @@ struct BeamEchoes {
     std::vector<SurfaceEcho> surface;
     std::vector<BeamSurface> volume;
     int rays = 0;  ///< traced for this beam after its probes (a measure of cost)
-    /// The recorded map's echoes came as pieces of lines across its discs (MapRows, MapScanline),
-    /// which draw its range profile, not as sub-rays' points (see BeamSurface::profiled).
-    bool map_by_lines = false;
 };
 
 }  // namespace ladarsim::sensor_model
