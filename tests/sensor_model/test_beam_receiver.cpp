@@ -202,7 +202,7 @@ TEST_CASE("a recorded map's surface metres deep draws its waveform: one surface 
     const double threshold_j = receiver.apd().threshold_a() / (receiver.apd().amps_per_watt() * receiver.waveform().pulse().peak_per_joule());
     std::vector<Echo> steps;
     for (int step = 0; step < 4; ++step) {
-        for (int k = 0; k < 21; ++k) steps.push_back({700.0 + step + 0.003 * (k - 10), 20.0 * threshold_j / 21, 0});
+        for (int k = 0; k < 21; ++k) steps.push_back({700.0 + step + 0.003 * (k - 10), 200.0 * threshold_j / 21, 0});
         if (step < 3)
             for (int k = 1; k < 10; ++k) steps.push_back({700.0 + step + 0.1 * k, 0.01 * threshold_j, 0});
     }
@@ -226,6 +226,13 @@ TEST_CASE("a recorded map's surface metres deep draws its waveform: one surface 
     }
     // A patch's surface (its spread carried, not drawn) keeps the closed form: one return.
     CHECK(receiver.receive({surface(0, steps.size(), false)}, BeamKey{1, 0, 1}).size() == 1);
+    // So does a weak one, whose closed-form peak is under 10 thresholds (here about 5): which of
+    // its steps cross the threshold is what no integration of a map resolves.
+    std::vector<Echo> weak = steps;
+    for (Echo& e : weak) e.energy_j *= 0.1;
+    BeamSurface faint = surface(0, steps.size(), true);
+    faint.echoes = weak;
+    CHECK(receiver.receive({faint}, BeamKey{1, 0, 1}).size() == 1);
     // Centres within the pulse's sigma make one peak however they lie: the closed form, profiled
     // or not (the first step alone).
     const auto compact = receiver.receive({surface(0, 21, true)}, BeamKey{1, 0, 1});

@@ -22,11 +22,11 @@ struct BeamSurface {
     std::vector<Echo> echoes; ///< true ranges; `surface` fields are set by BeamReceiver
     /// Its echoes draw its range profile piece by piece (a recorded map's discs, integrated along
     /// lines in every setting), not as patches that carry only their spread. Alone in a beam, it
-    /// takes the closed form (one Gaussian pulse) only where its echoes' centres lie within the
-    /// pulse's sigma, where their pulses add to one peak however they lie (two equal ones 2 sigma
-    /// apart are the widest pair that does); deeper (a stadium's stands), its waveform is drawn,
-    /// so that whether a few discs left a gap in range, splitting it in two surfaces, does not
-    /// decide between one return and seven.
+    /// takes the closed form (one Gaussian pulse) where its echoes' centres lie within the pulse's
+    /// sigma, where their pulses add to one peak however they lie (two equal ones 2 sigma apart
+    /// are the widest pair that does), or where it is weak (kResolvedPeaks); deeper and strong (a
+    /// stadium's stands), its waveform is drawn, so that whether a few discs left a gap in range,
+    /// splitting it in two surfaces, does not decide between one return and seven.
     bool profiled = false;
 };
 
