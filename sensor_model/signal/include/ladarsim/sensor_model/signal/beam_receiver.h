@@ -20,8 +20,9 @@ struct BeamSurface {
     ReturnSource source = ReturnSource::surface;
     double weight = 0.0;      ///< share of the beam's energy that met it (sum of sub-ray weights)
     std::vector<Echo> echoes; ///< true ranges; `surface` fields are set by BeamReceiver
-    /// Its echoes draw its range profile piece by piece (a recorded map's discs, integrated along
-    /// lines in every setting), not as patches that carry only their spread. Alone in a beam, it
+    /// Its echoes draw its range profile piece by piece (a recorded map's discs: the pieces of
+    /// lines across them, or sub-rays' points on them), not as patches that carry only their
+    /// spread. Alone in a beam, it
     /// takes the closed form (one Gaussian pulse) where its echoes' centres lie within the pulse's
     /// sigma, where their pulses add to one peak however they lie (two equal ones 2 sigma apart
     /// are the widest pair that does), or where it is weak (kResolvedPeaks); deeper and strong (a
