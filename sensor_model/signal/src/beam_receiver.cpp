@@ -100,7 +100,9 @@ BeamReceiver::BeamReceiver(const Sensor& sensor, const Atmosphere& atmosphere, b
       waveform_(apd_, sensor.transmitter.pulse_width_ns * 1e-9),
       unambiguous_range_m_(sensor.transmitter.unambiguous_range_m()),
       false_alarms_per_gate_(apd_.false_alarm_rate_hz() * sensor.range_gate_s()),
-      no_false_alarm_(std::exp(-false_alarms_per_gate_)) {}
+      no_false_alarm_(std::exp(-false_alarms_per_gate_)),
+      pulse_sigma_m_(waveform_.pulse().sigma_s * 0.5 * kSpeedOfLight_mps),
+      resolved_peak_j_(kResolvedPeaks * apd_.threshold_a() / (apd_.amps_per_watt() * waveform_.pulse().peak_per_joule())) {}
 
 double BeamReceiver::transmission(double range_m) const { return std::exp(-extinction_per_m_ * range_m); }
 
@@ -189,8 +191,7 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
     }
 
     RandomSequence noise(key.seed, RandomStream::detector_noise, key.frame, key.beam);
-    const double pulse_sigma_m = waveform_.pulse().sigma_s * 0.5 * kSpeedOfLight_mps;
-    if (surfaces.size() == 1 && !windows && (!surfaces.front().profiled || one_peak(surfaces.front().echoes, pulse_sigma_m, kResolvedPeaks * apd_.threshold_a() / (apd_.amps_per_watt() * waveform_.pulse().peak_per_joule())))) {
+    if (surfaces.size() == 1 && !windows && (!surfaces.front().profiled || one_peak(surfaces.front().echoes, pulse_sigma_m_, resolved_peak_j_))) {
         const DetectedReturn r = closed_form(surfaces.front(), noise);
         if (r.energy_j >= 0.0) returns.push_back(r);
     } else if (!surfaces.empty()) {
@@ -200,12 +201,12 @@ void BeamReceiver::receive(std::vector<BeamSurface>& surfaces, const BeamKey& ke
         pulses.clear();
         for (const BeamSurface& s : surfaces) {
             if (!sensor_.receiver.range_folding) {
-                append_merged(s.echoes, pulse_sigma_m, echoes);
+                append_merged(s.echoes, pulse_sigma_m_, echoes);
                 continue;
             }
             folded = s.echoes;
             for (Echo& e : folded) e.range_m = std::fmod(e.range_m, unambiguous_range_m_);
-            append_merged(folded, pulse_sigma_m, echoes);
+            append_merged(folded, pulse_sigma_m_, echoes);
         }
         RandomSequence waveform_noise(key.seed, RandomStream::waveform_noise, key.frame, key.beam);
         waveform_.detect(echoes, noise_ ? &waveform_noise : nullptr, pulses, windows);

@@ -88,6 +88,8 @@ private:
     double unambiguous_range_m_;
     double false_alarms_per_gate_;  ///< their mean count in one range gate, and exp(-it): drawn every beam
     double no_false_alarm_;
+    double pulse_sigma_m_;    ///< the pulse's sigma in range
+    double resolved_peak_j_;  ///< a deep map surface's closed-form peak from which its waveform is drawn
 };
 
 }  // namespace ladarsim::sensor_model
