@@ -34,16 +34,33 @@ expect_error "$src/tests/cli/bad/truncated_model.json" "objects[0].model: $src/t
 expect_error "$src/tests/cli/bad/extends_missing.json" "extends: no such file"
 expect_error "$src/tests/cli/bad/extends_bad_removal.json" "objects[0].remove"
 
-# A good run: every file present, no temporaries left, frames identical with 1 and 2 threads.
+# A good run: every file present, no temporaries left, frames identical with 1 and 2 threads, and
+# with 12 (three frames rendered at once, whatever the machine's cores).
 good="$src/tests/cli/small.json"
 "$bin" render "$good" --out "$work/t1" --threads 1 --quiet >/dev/null || fail "small scenario did not render"
 "$bin" render "$good" --out "$work/t2" --threads 2 --quiet >/dev/null || fail "small scenario did not render with 2 threads"
+"$bin" render "$good" --out "$work/t12" --threads 12 --quiet >/dev/null || fail "small scenario did not render with 12 threads"
 for f in manifest.json ground_truth.json frames/000000.pcd frames/000000.exr frames/000002.pcd frames/000002.exr; do
   [ -s "$work/t1/$f" ] || fail "missing $f"
 done
 [ -z "$(find "$work/t1" -name '*.tmp')" ] || fail "temporary files left behind"
 for f in "$work"/t1/frames/*; do
   cmp -s "$f" "$work/t2/frames/$(basename "$f")" || fail "$(basename "$f") differs between 1 and 2 threads"
+  cmp -s "$f" "$work/t12/frames/$(basename "$f")" || fail "$(basename "$f") differs between 1 and 12 threads (frames at once)"
+done
+cmp -s "$work/t1/ground_truth.json" "$work/t12/ground_truth.json" || fail "ground truth differs between 1 and 12 threads"
+
+# A frame that fails among frames rendered at once (12 threads: frames 3 to 5 together) fails the
+# run naming it, publishes nothing, and the frames kept resume to the dataset of a plain run.
+"$bin" render "$good" --out "$work/f1" --frames 7 --threads 1 --quiet >/dev/null || fail "7-frame render failed"
+"$bin" render "$good" --out "$work/f12" --frames 7 --threads 12 --quiet --fail-at-frame 4 >/dev/null 2>"$work/stderr"
+[ $? -ne 0 ] || fail "a frame failing among frames at once did not fail the run"
+grep -q "frame 4: failure injected" "$work/stderr" || fail "the failure does not name frame 4: $(cat "$work/stderr")"
+[ ! -e "$work/f12" ] || fail "a failed run published a dataset"
+[ -s "$work/f12.partial/frames/000003.pcd" ] || fail "the frame finished before the failed one in its batch was not kept"
+"$bin" render "$good" --out "$work/f12" --frames 7 --threads 12 --quiet --resume >/dev/null || fail "resume after a failure failed"
+for f in "$work"/f1/frames/* "$work/f1/ground_truth.json" "$work/f1/background.pcd"; do
+  cmp -s "$f" "$work/f12/${f#"$work/f1/"}" || fail "$(basename "$f") differs after resuming frames at once"
 done
 cmp -s "$work/t1/ground_truth.json" "$work/t2/ground_truth.json" || fail "ground truth differs between 1 and 2 threads"
 cmp -s "$work/t1/background.pcd" "$work/t2/background.pcd" || fail "initial map differs between 1 and 2 threads (surveyed while the frames render)"

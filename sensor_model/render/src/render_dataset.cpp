@@ -1,7 +1,6 @@
 #include "ladarsim/sensor_model/render/render_dataset.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -20,6 +19,7 @@
 #include "ladarsim/sensor_model/render/frame_renderer.h"
 #include "ladarsim/sensor_model/render/geometry_checks.h"
 #include "frame_writer.h"
+#include "frames_at_once.h"
 #include "initial_map_survey.h"
 
 namespace ladarsim::sensor_model {
@@ -192,26 +192,25 @@ DatasetSummary render_dataset(Scenario scenario, const DatasetOptions& options) 
     std::string failure;
     bool stopped = false;
     FrameWriter writer(files, static_cast<std::size_t>(threads));
-    // Every process takes the same number of turns, so that the collective checks line up.
+    // Every process takes the same number of turns, so that the collective checks line up; a
+    // batch of frames takes several at once. In a team each process takes one frame a turn:
+    // processes may see different numbers of cores, and their batches must still line up.
     const int turns = (scenario.render.frames + team.size() - 1) / team.size();
-    for (int turn = 0; turn < turns; ++turn) {
-        const int k = turn * team.size() + team.rank();
+    FrameBatch batch(scenario, renderer, team.size() == 1 ? frames_at_once(threads, turns) : 1);
+    for (int first_turn = 0; first_turn < turns; first_turn += batch.size()) {
+        const int end_turn = std::min(first_turn + batch.size(), turns);
         stopped = options.stop && options.stop->load();
-        if (!stopped && k < scenario.render.frames && !std::filesystem::exists(files.record_of(k))) {
-            try {
-                if (k == options.fail_at_frame) throw std::runtime_error("failure injected for testing");
-                const auto started = std::chrono::steady_clock::now();
-                Frame frame = renderer.render(static_cast<std::uint64_t>(k));
-                const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-                std::optional<FrameWaveforms> waveforms;
-                if (scenario.render.waveforms) waveforms = renderer.take_waveforms();
-                failure = writer.write(std::move(frame), seconds, std::move(waveforms));
-            } catch (const std::exception& e) {
-                failure = "frame " + std::to_string(k) + ": " + e.what();
-            }
+        std::vector<int> todo;
+        for (int turn = first_turn; turn < end_turn && !stopped; ++turn) {
+            const int k = turn * team.size() + team.rank();
+            if (k < scenario.render.frames && !std::filesystem::exists(files.record_of(k))) todo.push_back(k);
+        }
+        for (RenderedFrame& r : batch.render(todo, options.fail_at_frame)) {
+            if (failure.empty()) failure = r.failure;
+            if (failure.empty()) failure = writer.write(std::move(r.frame), r.render_s, std::move(r.waveforms));
         }
         if (team.any(!failure.empty() || stopped)) break;
-        if (options.progress && first_process) options.progress(std::min((turn + 1) * team.size(), scenario.render.frames), scenario.render.frames);
+        if (options.progress && first_process) options.progress(std::min(end_turn * team.size(), scenario.render.frames), scenario.render.frames);
     }
     if (const std::string written = writer.finish(); failure.empty()) failure = written;
     const bool any_failure = team.any(!failure.empty());
