@@ -242,3 +242,38 @@ TEST_CASE("a recorded map's surface metres deep draws its waveform: one surface 
     CHECK(compact[0].range_m == patch[0].range_m);
     CHECK(compact[0].energy_j == patch[0].energy_j);
 }
+
+TEST_CASE("one stretched surface: the closed form reports what the waveform's discriminator does", "[beam_receiver]") {
+    // Ground grazed over a footprint stretches its pulse. The discriminator times a pulse by its
+    // 50 % leading edge plus half the transmitted FWHM and reads its intensity from the peak over
+    // the transmitted pulse's peak: for a Gaussian of sigma s (range units) against the pulse's
+    // sigma p, sqrt(2 ln 2) (s - p) before its centre and p / s of its energy. One surface takes
+    // the closed form, the same surface beside another the waveform: a beam must not report
+    // another range because a bird entered its footprint.
+    Sensor c = sensor_preset("paper_ladar");
+    c.receiver.range_folding = false;
+    const BeamReceiver receiver(c, ladarsim::test::vacuum(), false);
+    const double peak_per_joule = receiver.waveform().pulse().peak_per_joule();
+    const double threshold_j = receiver.apd().threshold_a() / (receiver.apd().amps_per_watt() * peak_per_joule);
+    const double p = receiver.waveform().pulse().sigma_s * 0.5 * kSpeedOfLight_mps;
+    for (const double spread : {0.0, 0.05, 0.3, 1.2}) {
+        INFO("spread " << spread << " m");
+        BeamSurface ground;
+        ground.object_id = 3;
+        ground.weight = 1.0;
+        ground.echoes = {{800.0, 200.0 * threshold_j, 0, spread}};
+        const double s = std::sqrt(p * p + spread * spread);
+        const auto closed = receiver.receive({ground}, BeamKey{1, 0, 1});
+        std::vector<BeamSurface> surfaces = {ground};
+        std::vector<DetectedReturn> drawn;
+        std::vector<WaveformWindow> windows;  // asking for the waveform draws it
+        receiver.receive(surfaces, BeamKey{1, 0, 1}, drawn, &windows);
+        REQUIRE(closed.size() == 1);
+        REQUIRE(drawn.size() == 1);
+        CHECK(closed[0].range_m == Approx(800.0 - std::sqrt(2.0 * std::log(2.0)) * (s - p)).margin(1e-9));
+        CHECK(closed[0].energy_j / (200.0 * threshold_j) == Approx(p / s).epsilon(1e-9));
+        // The waveform's samples every 0.125 ns (19 mm), its peak refined by a log-parabola: mm.
+        CHECK(drawn[0].range_m == Approx(closed[0].range_m).margin(2e-3));
+        CHECK(drawn[0].energy_j / closed[0].energy_j == Approx(1.0).epsilon(2e-3));
+    }
+}

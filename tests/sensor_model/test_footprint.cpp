@@ -106,6 +106,40 @@ TEST_CASE("footprint reproduces the truncated Gaussian's second moment", "[footp
     CHECK(m2 / beams == Approx(second_moment(1.5)).epsilon(0.005));
 }
 
+TEST_CASE("a quantity linear across the footprint varies over it as over the fixed sub-rays times variance_over_fixed", "[footprint]") {
+    // The plane and curved patches take a surface's range spread from 16 or 32 cell medians, which
+    // miss each cell's own spread (a wall grazed at 85 deg came out 3 % short in spread, and its
+    // leading-edge range 6 mm late, against 65,536 sub-rays). The reference: a x + b y over the
+    // truncated Gaussian has variance (a^2 + b^2) E[r^2] / 2, the closed form; 262,144 cell medians
+    // agree with it where their thick tail ring does not bias them (truncation up to 1.5).
+    auto variance = [](const std::vector<SubRay>& rays, double a, double b) {
+        double sum = 0.0, sum2 = 0.0;
+        for (const SubRay& r : rays) {
+            const double v = a * r.offset_x_rad + b * r.offset_y_rad;
+            sum += r.weight * v;
+            sum2 += r.weight * v * v;
+        }
+        return sum2 - sum * sum;
+    };
+    for (const double truncation : {1.0, 1.5, 2.0}) {
+        std::vector<SubRay> fine(512 * 512);
+        Footprint(kDivergence, static_cast<int>(fine.size()), truncation).fixed(fine);
+        for (const int n : {16, 32}) {
+            const Footprint f(kDivergence, n, truncation);
+            std::vector<SubRay> nodes(static_cast<std::size_t>(n));
+            f.fixed(nodes);
+            INFO("truncation " << truncation << ", " << n << " sub-rays: factor " << f.variance_over_fixed());
+            CHECK(f.variance_over_fixed() > 1.0);
+            for (const auto& [a, b] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}, std::pair{0.3, -1.7}}) {
+                const double closed_form = (a * a + b * b) * 0.5 * second_moment(truncation);
+                CHECK(f.variance_over_fixed() * variance(nodes, a, b) == Approx(closed_form).epsilon(1e-9));
+                if (truncation <= 1.5) CHECK(variance(fine, a, b) == Approx(closed_form).epsilon(2e-4));
+            }
+        }
+    }
+    CHECK(Footprint(kDivergence, 1, 1.5).variance_over_fixed() == 1.0);
+}
+
 TEST_CASE("counter-based draws depend only on their keys", "[counter_random]") {
     const auto a = uniform4(42, RandomStream::footprint_jitter, 3, 1000, 5);
     const auto b = uniform4(42, RandomStream::footprint_jitter, 3, 1000, 5);

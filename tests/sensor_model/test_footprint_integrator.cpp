@@ -129,8 +129,9 @@ TEST_CASE("a plane patch integrated without rays equals brute force on a tilted 
         const Return& b = brute.returns[i];
         REQUIRE(a.column == b.column);
         REQUIRE(a.row == b.row);
-        // 16 quadrature nodes against 4096 sub-rays: the mean range to a millimetre, the energy
-        // (which also depends on the spread, through the stretched pulse's peak) to 0.5 %.
+        // 16 quadrature nodes against 4096 sub-rays: the range to a millimetre and the intensity
+        // to 0.5 %, both read from the stretched pulse, so both depend on the range spread (the
+        // nodes' spread scaled by Footprint::variance_over_fixed: unscaled, 6 mm and 2.8 % at 85 deg).
         CHECK(a.range_m == Approx(b.range_m).margin(1e-3));
         CHECK(a.intensity == Approx(b.intensity).epsilon(5e-3));
     }
@@ -179,7 +180,13 @@ TEST_CASE("from a 10 m wall to a small plate at 2 km, each energy matches its cl
             const double cos_axis = std::cos(r.beam_el_rad) * std::cos(r.beam_az_rad);
             const double range = distance / cos_axis;
             CHECK(r.range_m == Approx(range).margin(1e-4));
-            CHECK(r.intensity == Approx(extended_target_photoelectrons(s.sensor, 0.5, cos_axis, range)).epsilon(1e-4));
+            // The intensity is read from the pulse's peak: a beam 4 mrad off the wall's normal at
+            // 2 km spans 1.4 mm of range, and its peak is 2e-4 lower for it.
+            const double peak_share = test::discriminated_echo(s.sensor, s.render.footprint_truncation, [&](double x, double y) {
+                const double c = std::cos(r.beam_el_rad + y) * std::cos(r.beam_az_rad + x);
+                return std::pair{distance / c, c * c * c};
+            }, 100).peak_share;
+            CHECK(r.intensity == Approx(peak_share * extended_target_photoelectrons(s.sensor, 0.5, cos_axis, range)).epsilon(1e-4));
             if (distance == 10.0) near_rendered = std::max(near_rendered, double(r.intensity));
         }
     }

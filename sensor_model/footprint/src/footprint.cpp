@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 namespace ladarsim::sensor_model {
 
@@ -81,6 +82,23 @@ void Footprint::jittered(std::span<SubRay> out, std::span<const double> uniforms
     for (std::size_t i = 0; i < cells_.size(); ++i) {
         out[i] = place(cells_[i], uniforms[2 * i], uniforms[2 * i + 1], weight);
     }
+}
+
+double Footprint::variance_over_fixed() const {
+    if (cells_.size() < 2) return 1.0;  // a lone sample on the axis has no variance to scale
+    std::vector<SubRay> nodes(cells_.size());
+    fixed(nodes);
+    double sum = 0.0, sum2 = 0.0;
+    for (const SubRay& s : nodes) {
+        sum += s.offset_x_rad;
+        sum2 += s.offset_x_rad * s.offset_x_rad;
+    }
+    const double n = static_cast<double>(nodes.size());
+    // E[r^2] of the truncated Gaussian, F(r) = 1 - exp(-u), u = 2 r^2 / w^2 up to U:
+    // (w^2 / 2) (1 - e^-U (1 + U)) / (1 - e^-U); each axis holds half of it.
+    const double U = 2.0 * (max_radius_rad_ / waist_rad_) * (max_radius_rad_ / waist_rad_);
+    const double mean_r2 = 0.5 * waist_rad_ * waist_rad_ * (1.0 - std::exp(-U) * (1.0 + U)) / captured_;
+    return 0.5 * mean_r2 / (sum2 / n - (sum / n) * (sum / n));
 }
 
 std::optional<FootprintRect> Footprint::clip(const FootprintRect& rect) const {

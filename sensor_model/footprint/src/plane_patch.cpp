@@ -10,7 +10,9 @@ namespace ladarsim::sensor_model {
 PlanePatch::PlanePatch(const FootprintContext& context, const CurvedPatch& curved) : context_(context), curved_(curved) {
     // The equal-energy cells of an adaptive footprint (which has kPlaneQuadrature of them).
     std::vector<SubRay> nodes(kPlaneQuadrature);
-    Footprint(context.sensor.transmitter.divergence_mrad * kMrad, kPlaneQuadrature, context.settings.truncation).fixed(nodes);
+    const Footprint quadrature(context.sensor.transmitter.divergence_mrad * kMrad, kPlaneQuadrature, context.settings.truncation);
+    quadrature.fixed(nodes);
+    within_cells_ = quadrature.variance_over_fixed();
     for (const SubRay& s : nodes) {
         quadrature_in_beam_.push_back(context.shape.in_beam(s.offset_x_rad, s.offset_y_rad));
         quadrature_x_.push_back(s.offset_x_rad);
@@ -82,7 +84,7 @@ Integration PlanePatch::integrate(const BeamSetting& beam, const FootprintPart& 
     }
     if (nodes == 0) return {Outcome::declined};
     const double range = et_sum / e_sum;
-    const double spread = std::sqrt(std::max(0.0, et2_sum / e_sum - range * range));
+    const double spread = std::sqrt(within_cells_ * std::max(0.0, et2_sum / e_sum - range * range));
     const double energy = q_mean * context_.echo_energy_j(weight, reflectance, 1.0, range, 1.0) *
                           (range * range + context_.aperture_radius2) * e_sum / nodes;
     out.surface.push_back({range, weight, energy, spread, probes.object_id, origin + range * beam.aim.world_from_beam.col(0),

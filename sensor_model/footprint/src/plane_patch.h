@@ -26,6 +26,8 @@ private:
     const CurvedPatch& curved_;
     std::vector<Eigen::Vector3d> quadrature_in_beam_;  ///< directions integrating the plane
     std::vector<double> quadrature_x_, quadrature_y_;
+    /// The range variance over the footprint per that over the nodes (Footprint::variance_over_fixed).
+    double within_cells_ = 1.0;
 };
 
 }  // namespace ladarsim::sensor_model

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <span>
 #include <utility>
 
@@ -127,9 +128,15 @@ DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSeque
     r.saturated = measured >= apd_.saturation_a();
     r.object_id = surface.object_id;
     r.source = surface.source;
+    // Reported as the waveform's discriminator reports this one Gaussian pulse (WaveformReceiver::
+    // measure): its intensity the peak over the transmitted pulse's peak, its time the 50 %
+    // leading edge plus half the transmitted FWHM, sqrt(2 ln 2) (sigma - sigma_pulse) before its
+    // centre. The same surface beside another draws its waveform, and must report the same.
     // Below the threshold the return is lost; energy_j < 0 marks it for the caller to drop.
-    r.energy_j = measured > apd_.threshold_a() ? measured / (apd_.amps_per_watt() * shape.peak_per_joule()) : -1.0;
-    r.range_m = range + (noise_ ? apd_.range_jitter_m(power, shape) * noise.normal() : 0.0);
+    r.energy_j = measured > apd_.threshold_a() ? measured / (apd_.amps_per_watt() * waveform_.pulse().peak_per_joule()) : -1.0;
+    const double sigma_m = shape.sigma_s * 0.5 * kSpeedOfLight_mps;
+    r.range_m = range - std::sqrt(2.0 * std::numbers::ln2) * (sigma_m - pulse_sigma_m_) +
+                (noise_ ? apd_.range_jitter_m(power, shape) * noise.normal() : 0.0);
     fold(r);
     return r;
 }

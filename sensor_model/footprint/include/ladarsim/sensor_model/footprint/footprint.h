@@ -65,6 +65,11 @@ public:
     void fixed(std::span<SubRay> out) const;
     /// Fills `out` with one jittered sub-ray per cell; u[i] are two uniforms in (0, 1] per cell.
     void jittered(std::span<SubRay> out, std::span<const double> uniforms) const;
+    /// The truncated footprint's variance along an axis over that of its fixed() sub-rays (>= 1,
+    /// the same along every axis): a quantity linear across the footprint, such as the range to a
+    /// plane, varies this many times as much over the footprint as over those sub-rays, each of
+    /// which stands for its cell's mean and misses the cell's own spread.
+    double variance_over_fixed() const;
 
     /// A rectangle clipped to the square around the truncated footprint; empty when outside it.
     std::optional<FootprintRect> clip(const FootprintRect& rect) const;
