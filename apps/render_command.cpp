@@ -78,7 +78,9 @@ struct RenderCommand {
             ->check(whole_number(1, sensor_model::kMaxFrames));
         render->add_option("--seed", seed, "Random seed (default: the scenario's render.seed)")
             ->check(whole_number(0, std::numeric_limits<std::uint64_t>::max()));
-        render->add_option("--threads", threads, "Worker threads (0, the default: all cores); output does not depend on it")
+        render->add_option("--threads", threads,
+                           "Worker threads (0, the default: all cores); output does not depend on it. From 8, a frame per 4 "
+                           "threads renders at once, each with its own copy of the scene")
             ->check(whole_number(0, std::numeric_limits<int>::max()));
         render->add_flag("--quiet", quiet, "No progress output");
         render->add_flag("--dry-run", dry_run,

@@ -275,5 +275,13 @@ TEST_CASE("one stretched surface: the closed form reports what the waveform's di
         // The waveform's samples every 0.125 ns (19 mm), its peak refined by a log-parabola: mm.
         CHECK(drawn[0].range_m == Approx(closed[0].range_m).margin(2e-3));
         CHECK(drawn[0].energy_j / closed[0].energy_j == Approx(1.0).epsilon(2e-3));
+        // A volume's free-path samples keep their mean range and all their energy (too few to
+        // place an edge: see closed_form).
+        BeamSurface cloud = ground;
+        cloud.source = ReturnSource::volume;
+        const auto volume = receiver.receive({cloud}, BeamKey{1, 0, 1});
+        REQUIRE(volume.size() == 1);
+        CHECK(volume[0].range_m == 800.0);
+        CHECK(volume[0].energy_j / (200.0 * threshold_j) == Approx(1.0).epsilon(1e-12));
     }
 }
