@@ -22,7 +22,7 @@ CurvedPatch::CurvedPatch(const FootprintContext& context) : context_(context) {
     std::vector<SubRay> nodes(kCurvedQuadrature);
     const Footprint quadrature(footprint.waist_rad() * 2.0, kCurvedQuadrature, context.settings.truncation);
     quadrature.fixed(nodes);
-    within_cells_ = quadrature.variance_over_fixed();
+    spread_scale_ = std::sqrt(quadrature.variance_over_fixed());
     for (const SubRay& s : nodes) nodes_.push_back({s.offset_x_rad, s.offset_y_rad, context.shape.in_beam(s.offset_x_rad, s.offset_y_rad)});
 }
 
@@ -76,7 +76,7 @@ Integration CurvedPatch::integrate(const BeamSetting& beam, const FootprintPart&
     if (!patch || patch->range_m > context_.max_range_m) return {Outcome::declined};
     const double range = patch->range_m;
     const double energy = context_.echo_energy_j(weight, 1.0, 1.0, range, 1.0) * (range * range + context_.aperture_radius2) * patch->seen;
-    out.surface.push_back({range, weight, energy, std::sqrt(within_cells_) * patch->spread_m, chain.front().object_id,
+    out.surface.push_back({range, weight, energy, spread_scale_ * patch->spread_m, chain.front().object_id,
                            beam.aim.origin_world + range * beam.aim.world_from_beam.col(0), normal.cast<float>()});
     return {Outcome::integrated, weight};
 }

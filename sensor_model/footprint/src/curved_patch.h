@@ -25,8 +25,8 @@ public:
 private:
     const FootprintContext& context_;
     std::vector<PatchNode> nodes_;  ///< directions integrating the patch
-    /// The range variance over the footprint per that over the nodes (Footprint::variance_over_fixed).
-    double within_cells_ = 1.0;
+    /// The range spread over the footprint per that over the nodes (Footprint::variance_over_fixed, its root).
+    double spread_scale_ = 1.0;
 };
 
 }  // namespace ladarsim::sensor_model

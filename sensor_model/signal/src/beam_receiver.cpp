@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <span>
 #include <utility>
 
@@ -129,10 +128,9 @@ DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSeque
     r.saturated = measured >= apd_.saturation_a();
     r.object_id = surface.object_id;
     r.source = surface.source;
-    // A surface is reported as the waveform's discriminator reports this one Gaussian pulse
-    // (WaveformReceiver::measure): its intensity the peak over the transmitted pulse's peak, its
-    // time the 50 % leading edge plus half the transmitted FWHM, sqrt(2 ln 2) (sigma -
-    // sigma_pulse) before its centre. The same surface beside another draws its waveform, and
+    // A surface is reported as the waveform's discriminator reports this one Gaussian pulse: its
+    // intensity the peak over the transmitted pulse's peak, its time the 50 % leading edge plus
+    // half the transmitted FWHM (WaveformReceiver::timing_offset_s). The same surface beside another draws its waveform, and
     // must report the same. A volume keeps its mean range and its energy: its free-path samples
     // are too few for their spread to place an edge (reported at the edge, the bench's cloud edge
     // at 640 m went from 21 to 64 mm off 4096 sub-rays, 5.9 % of beams by more than 0.15 m).
@@ -140,8 +138,7 @@ DetectedReturn BeamReceiver::closed_form(const BeamSurface& surface, RandomSeque
     const bool as_discriminated = surface.source == ReturnSource::surface;
     const double per_joule = as_discriminated ? waveform_.pulse().peak_per_joule() : shape.peak_per_joule();
     r.energy_j = measured > apd_.threshold_a() ? measured / (apd_.amps_per_watt() * per_joule) : -1.0;
-    const double sigma_m = shape.sigma_s * 0.5 * kSpeedOfLight_mps;
-    const double leading_edge_m = as_discriminated ? std::sqrt(2.0 * std::numbers::ln2) * (sigma_m - pulse_sigma_m_) : 0.0;
+    const double leading_edge_m = as_discriminated ? 0.5 * kSpeedOfLight_mps * waveform_.timing_offset_s(shape) : 0.0;
     r.range_m = range - leading_edge_m + (noise_ ? apd_.range_jitter_m(power, shape) * noise.normal() : 0.0);
     fold(r);
     return r;

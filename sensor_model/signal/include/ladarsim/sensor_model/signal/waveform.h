@@ -3,6 +3,8 @@
 // pulse shape at its time of flight on a fine time grid, band-limited detector noise is added,
 // and peaks are found the way the sensor's discriminator would.
 #include <cstdint>
+#include <cmath>
+#include <numbers>
 #include <span>
 #include <memory>
 #include <vector>
@@ -64,6 +66,10 @@ public:
     /// edge, such as a cloud's, does not re-trigger at every wiggle).
     double release_a() const { return 0.5 * apd_.threshold_a(); }
     const PulseShape& pulse() const { return pulse_; }
+    /// How much earlier than its centre detect() times one Gaussian pulse of this width (noise
+    /// off): its 50 % leading edge, sqrt(2 ln 2) sigma before the centre, plus half the
+    /// transmitted FWHM, so sqrt(2 ln 2) (sigma - sigma_transmitted); 0 for the transmitted pulse.
+    double timing_offset_s(const PulseShape& shape) const { return std::sqrt(2.0 * std::numbers::ln2) * (shape.sigma_s - pulse_.sigma_s); }
 
 private:
     /// A stretch of a window where pulses can be detected: its bins and the echoes reaching it.
