@@ -40,26 +40,27 @@ run)
     bins=ladarsim
     launch() { shift; build/apps/ladarsim "$@"; }
   fi
-  # Dataset 2 over Autzen with the map wherever it is here (the scenario names ../shared).
-  sed "s#\"../../../shared/data/autzen/autzen_trim.pcd\"#\"$(realpath "$map")\"#" assets/scenarios/dataset2-autzen.json \
-    >assets/scenarios/.scaling-ds2-autzen.json
-  trap 'rm -rf "$work" assets/scenarios/.scaling-ds2-autzen.json' EXIT
+  # Dataset 2 over Autzen with the map wherever it is here (the scenario names ../shared), written
+  # in the scratch directory: nothing is written into the source tree.
+  sed -e "s#\"../../../shared/data/autzen/autzen_trim.pcd\"#\"$(realpath "$map")\"#" \
+      -e "s#\"extends\": \"dataset2.json\"#\"extends\": \"$(realpath assets/scenarios/dataset2.json)\"#" \
+      assets/scenarios/dataset2-autzen.json >"$work/ds2-autzen.json"
   echo "cores $(nproc)"
   printf '%-16s %-16s %6s %7s %8s %8s %9s %10s\n' binary scenario frames threads wall_s user_s render_s beams_per_s
-  for sc in "default 300" ".scaling-ds2-autzen 48"; do
+  for sc in "assets/scenarios/default.json 300" "$work/ds2-autzen.json 48"; do
     set -- $sc
     for t in $threads; do
       for b in $bins; do
         rm -rf "$work/out"
         start=$(date +%s.%N)
         TIMEFORMAT=%U
-        user=$( { time launch "$b" render "assets/scenarios/$1.json" --out "$work/out" --threads "$t" --frames "$2" --quiet >/dev/null 2>"$work/err"; } 2>&1 ) ||
+        user=$( { time launch "$b" render "$1" --out "$work/out" --threads "$t" --frames "$2" --quiet >/dev/null 2>"$work/err"; } 2>&1 ) ||
           { echo "$b $1 --threads $t failed: $(cat "$work/err")" >&2; exit 1; }
         wall=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}')
         render_s=$(grep -o '"render_s": *[0-9.e+-]*' "$work/out/manifest.json" | tail -1 | sed 's/.*: *//')
         az=$(grep -o '"beams_az": *[0-9]*' "$work/out/manifest.json" | head -1 | sed 's/.*: *//')
         el=$(grep -o '"beams_el": *[0-9]*' "$work/out/manifest.json" | head -1 | sed 's/.*: *//')
-        printf '%-16s %-16s %6s %7s %8.2f %8.2f %9.2f %10.0f\n' "$b" "${1#.scaling-}" "$2" "$t" "$wall" "$user" "$render_s" \
+        printf '%-16s %-16s %6s %7s %8.2f %8.2f %9.2f %10.0f\n' "$b" "$(basename "$1" .json)" "$2" "$t" "$wall" "$user" "$render_s" \
           "$(awk -v n="$((az * el * $2))" -v w="$wall" 'BEGIN {print n / w}')"
       done
     done
